@@ -1,0 +1,166 @@
+//! The sparsity pattern of `K`, built once per discretisation.
+//!
+//! At point level, column `q` holds the row points that any owner's tangent
+//! couples to `q`. Owners that touch `q` are `q` itself and the owners of the
+//! bonds that end at `q` (its dual horizon): the pattern therefore keeps, per
+//! point, the list of those incoming bonds (the transpose of the bond CSR).
+//! - Star coupling (bond-based): rows(q) = {q} ∪ H_q ∪ H'_q.
+//! - Family coupling (state-based): rows(q) = ∪_{o ∈ {q} ∪ H'_q} ({o} ∪ H_o).
+//!
+//! At degree-of-freedom level the pattern is the point pattern expanded by the
+//! free components of each point. Broken bonds keep their slots, so the
+//! pattern (and the symbolic factorisation) never changes when bonds break.
+
+use super::dofs::DofMap;
+use super::split_at_offsets;
+use crate::discretization::Discretization;
+use crate::model::Coupling;
+use rayon::prelude::*;
+
+/// Point-level pattern plus the incoming-bond index used for column filling.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pattern {
+    /// `row_offsets[q]..row_offsets[q+1]` index `row_points` for column point q.
+    pub row_offsets: Vec<usize>,
+    /// Sorted row points of each column point.
+    pub row_points: Vec<u32>,
+    /// `in_offsets[q]..in_offsets[q+1]` index `in_bonds` for point q.
+    pub in_offsets: Vec<usize>,
+    /// `(owner, bond)` of every bond whose neighbour is q.
+    pub in_bonds: Vec<(u32, u32)>,
+    /// Degree-of-freedom CSC column pointers over the free unknowns.
+    pub col_ptr: Vec<usize>,
+    /// Degree-of-freedom CSC row indices.
+    pub row_idx: Vec<usize>,
+}
+
+impl Pattern {
+    /// The sorted row points of column point `q`.
+    #[inline]
+    pub fn rows(&self, q: usize) -> &[u32] {
+        &self.row_points[self.row_offsets[q]..self.row_offsets[q + 1]]
+    }
+
+    /// The `(owner, bond)` pairs of the bonds ending at `q`.
+    #[inline]
+    pub fn incoming(&self, q: usize) -> &[(u32, u32)] {
+        &self.in_bonds[self.in_offsets[q]..self.in_offsets[q + 1]]
+    }
+
+    /// Number of stored entries of `K`.
+    pub fn nnz(&self) -> usize {
+        self.row_idx.len()
+    }
+
+    /// Builds the pattern for `coupling` on the free unknowns of `dofs`.
+    pub fn new(disc: &Discretization, dofs: &DofMap, coupling: Coupling) -> Self {
+        let n = disc.points.len();
+        let bonds = &disc.bonds;
+        // Transpose of the bond CSR (all bonds, intact or not: slots are kept).
+        let mut in_offsets = vec![0usize; n + 1];
+        for &j in &bonds.neighbour {
+            in_offsets[j as usize + 1] += 1;
+        }
+        for q in 0..n {
+            in_offsets[q + 1] += in_offsets[q];
+        }
+        let mut fill = in_offsets.clone();
+        let mut in_bonds = vec![(0u32, 0u32); bonds.len()];
+        for o in 0..n {
+            for b in bonds.owned_by(o) {
+                let j = bonds.neighbour[b] as usize;
+                in_bonds[fill[j]] = (o as u32, b as u32);
+                fill[j] += 1;
+            }
+        }
+        let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
+        let rows: Vec<Vec<u32>> = (0..n)
+            .into_par_iter()
+            .map(|q| {
+                let incoming = &in_bonds[in_offsets[q]..in_offsets[q + 1]];
+                let mut r: Vec<u32> = vec![q as u32];
+                match coupling {
+                    Coupling::Star => {
+                        r.extend(family(q));
+                        r.extend(incoming.iter().map(|&(o, _)| o));
+                    }
+                    Coupling::Family => {
+                        r.extend(family(q));
+                        for &(o, _) in incoming {
+                            r.push(o);
+                            r.extend(family(o as usize));
+                        }
+                    }
+                }
+                r.sort_unstable();
+                r.dedup();
+                r
+            })
+            .collect();
+        let mut row_offsets = Vec::with_capacity(n + 1);
+        row_offsets.push(0);
+        for r in &rows {
+            row_offsets.push(row_offsets.last().unwrap() + r.len());
+        }
+        let row_points: Vec<u32> = rows.into_iter().flatten().collect();
+
+        // Degree-of-freedom level: column point q has free_count(q) columns, each
+        // with Σ_{p ∈ rows(q)} free_count(p) rows.
+        let free_count: Vec<usize> = (0..n).map(|i| dofs.free_count(i)).collect();
+        let entries_per_column: Vec<usize> = (0..n)
+            .into_par_iter()
+            .map(|q| {
+                row_points[row_offsets[q]..row_offsets[q + 1]]
+                    .iter()
+                    .map(|&p| free_count[p as usize])
+                    .sum()
+            })
+            .collect();
+        let mut col_ptr = Vec::with_capacity(dofs.n_free() + 1);
+        col_ptr.push(0);
+        let mut point_value_offsets = Vec::with_capacity(n + 1);
+        point_value_offsets.push(0);
+        for q in 0..n {
+            for _ in 0..free_count[q] {
+                col_ptr.push(col_ptr.last().unwrap() + entries_per_column[q]);
+            }
+            point_value_offsets.push(*col_ptr.last().unwrap());
+        }
+        let mut row_idx = vec![0usize; *col_ptr.last().unwrap()];
+        split_at_offsets(&mut row_idx, &point_value_offsets)
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(q, chunk)| {
+                let column: Vec<usize> = row_points[row_offsets[q]..row_offsets[q + 1]]
+                    .iter()
+                    .flat_map(|&p| (0..dofs.d).map(move |r| dofs.free_index[3 * p as usize + r]))
+                    .filter(|&k| k != super::dofs::PRESCRIBED)
+                    .map(|k| k as usize)
+                    .collect();
+                for dest in chunk.chunks_mut(column.len().max(1)) {
+                    dest.copy_from_slice(&column[..dest.len()]);
+                }
+            });
+        Pattern {
+            row_offsets,
+            row_points,
+            in_offsets,
+            in_bonds,
+            col_ptr,
+            row_idx,
+        }
+    }
+
+    /// Offsets into the value array of each point's block of columns.
+    pub fn point_value_offsets(&self, dofs: &DofMap) -> Vec<usize> {
+        let n = self.row_offsets.len() - 1;
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0);
+        let mut col = 0;
+        for q in 0..n {
+            col += dofs.free_count(q);
+            offsets.push(self.col_ptr[col]);
+        }
+        offsets
+    }
+}

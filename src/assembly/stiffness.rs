@@ -1,0 +1,117 @@
+//! Filling the stiffness values on a fixed [`Pattern`], in parallel by column point.
+//!
+//! Column point `q` gathers the blocks `K[p][q]` from every owner that touches
+//! it (`q` itself, [`Column::Owner`], and the owners of the bonds ending at `q`,
+//! [`Column::Neighbour`]); its columns are a contiguous slice of the value array,
+//! so threads never write to the same memory.
+
+use super::dofs::{DofMap, PRESCRIBED};
+use super::pattern::Pattern;
+use super::split_at_offsets;
+use crate::discretization::Discretization;
+use crate::model::{Block, Column, Model};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use rayon::prelude::*;
+
+/// The reduced stiffness matrix on the free unknowns, in CSC form (both triangles stored).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Stiffness {
+    /// Number of free unknowns.
+    pub n: usize,
+    /// Values, aligned with the pattern's `row_idx`.
+    pub values: Vec<f64>,
+}
+
+impl Stiffness {
+    /// Allocates and fills `K` for `model`.
+    pub fn assemble<M: Model>(
+        model: &M,
+        disc: &Discretization,
+        dofs: &DofMap,
+        pattern: &Pattern,
+    ) -> Self {
+        let mut values = vec![0.0; pattern.nnz()];
+        fill(model, disc, dofs, pattern, &mut values);
+        Stiffness {
+            n: dofs.n_free(),
+            values,
+        }
+    }
+
+    /// A faer view of the matrix.
+    pub fn view<'a>(&'a self, pattern: &'a Pattern) -> SparseColMatRef<'a, usize, f64> {
+        // The pattern is built with sorted, in-range, duplicate-free row indices.
+        let symbolic = unsafe {
+            SymbolicSparseColMatRef::new_unchecked(
+                self.n,
+                self.n,
+                &pattern.col_ptr,
+                None,
+                &pattern.row_idx,
+            )
+        };
+        SparseColMatRef::new(symbolic, &self.values)
+    }
+
+    /// `y = K x`.
+    pub fn mul(&self, pattern: &Pattern, x: &[f64]) -> Vec<f64> {
+        let mut y = vec![0.0; self.n];
+        for (col, &xc) in x.iter().enumerate() {
+            for k in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+                y[pattern.row_idx[k]] += self.values[k] * xc;
+            }
+        }
+        y
+    }
+}
+
+/// Overwrites `values` with the tangent of `model` (all entries of the pattern are written).
+pub fn fill<M: Model>(
+    model: &M,
+    disc: &Discretization,
+    dofs: &DofMap,
+    pattern: &Pattern,
+    values: &mut [f64],
+) {
+    let offsets = pattern.point_value_offsets(dofs);
+    split_at_offsets(values, &offsets)
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(q, out)| {
+            if out.is_empty() {
+                return;
+            }
+            let rows = pattern.rows(q);
+            let mut acc: Vec<Block> = vec![[[0.0; 3]; 3]; rows.len()];
+            let mut add = |p: usize, block: &Block| {
+                let k = rows
+                    .binary_search(&(p as u32))
+                    .expect("pattern holds every coupled point");
+                for r in 0..3 {
+                    for c in 0..3 {
+                        acc[k][r][c] += block[r][c];
+                    }
+                }
+            };
+            model.tangent_column(disc, q, Column::Owner, &mut add);
+            for &(owner, bond) in pattern.incoming(q) {
+                model.tangent_column(
+                    disc,
+                    owner as usize,
+                    Column::Neighbour(bond as usize),
+                    &mut add,
+                );
+            }
+            let mut pos = 0;
+            for c in (0..dofs.d).filter(|&c| dofs.free_index[3 * q + c] != PRESCRIBED) {
+                for (k, &p) in rows.iter().enumerate() {
+                    for r in
+                        (0..dofs.d).filter(|&r| dofs.free_index[3 * p as usize + r] != PRESCRIBED)
+                    {
+                        out[pos] = acc[k][r][c];
+                        pos += 1;
+                    }
+                }
+            }
+        });
+}

@@ -1,0 +1,148 @@
+//! The `dhpd` command line.
+//!
+//! ```text
+//! dhpd                          run the embedded default scene (2D bimaterial strip)
+//!                               and compare it with its finite-element reference
+//! dhpd run SCENE [--out DIR]    solve a scene, write results into DIR
+//! dhpd check SCENE              validate a scene (and its point files) only
+//! ```
+//!
+//! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error.
+
+use clap::{Parser, Subcommand};
+use dhpd::drivers::static_solve;
+use dhpd::error::Error;
+use dhpd::output::{self, Plan};
+use dhpd::reference::{ErrorStats, FemReference, BIMATERIAL_STRIP_FEM};
+use dhpd::scene::{self, Scene};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Parser)]
+#[command(name = "dhpd", version, about = "Implicit dual-horizon peridynamics")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a scene (TOML, or JSON by extension) and write its results.
+    Run {
+        /// Scene file.
+        scene: PathBuf,
+        /// Output directory (default: `dhpd-out/<scene name>`); replaced when the run succeeds.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Validate a scene and its point files without solving.
+    Check {
+        /// Scene file.
+        scene: PathBuf,
+    },
+}
+
+fn main() {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        None => run_default(),
+        Some(Command::Run { scene, out }) => {
+            scene::load(&scene).and_then(|s| run(&s, out.as_deref()).map(|_| ()))
+        }
+        Some(Command::Check { scene }) => check(&scene),
+    };
+    if let Err(e) = result {
+        eprintln!("dhpd: {e}");
+        std::process::exit(e.exit_code());
+    }
+}
+
+fn check(path: &Path) -> Result<(), Error> {
+    let scene = scene::load(path)?;
+    let raw = dhpd::discretization::generate_points(&scene)?;
+    println!(
+        "{}: valid ({} points before neighbour search)",
+        path.display(),
+        raw.len()
+    );
+    Ok(())
+}
+
+fn run(scene: &Scene, out: Option<&Path>) -> Result<static_solve::StaticSolution, Error> {
+    let start = Instant::now();
+    let dir = out
+        .map(Path::to_path_buf)
+        .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name));
+    let prepared = static_solve::prepare(scene)?;
+    let plan = Plan::new(scene, &prepared.disc)?;
+    let solution = prepared.solve(scene)?;
+    output::write_static(&dir, scene, &plan, &solution, start.elapsed().as_secs_f64())?;
+    print_report(scene, &solution, &dir);
+    Ok(solution)
+}
+
+fn print_report(scene: &Scene, s: &static_solve::StaticSolution, dir: &Path) {
+    let c = &s.counts;
+    let t = &s.timings;
+    println!(
+        "scene {}: {} points, {} bonds, {} free dofs, nnz(K) {}, nnz(L) {}",
+        scene.name,
+        c.points,
+        c.bonds,
+        c.dofs,
+        c.nnz_k,
+        c.nnz_l.map_or("-".into(), |v| v.to_string())
+    );
+    println!(
+        "time [s]: points {:.3}, neighbours {:.3}, pattern {:.3}, assembly {:.3}, symbolic {:.3}, numeric {:.3}, solve {:.3}",
+        t.discretization, t.neighbour_search, t.pattern, t.assembly, t.symbolic_factorization, t.numeric_factorization, t.solve
+    );
+    println!("relative residual {:.2e}", s.residual);
+    for r in &s.reactions {
+        println!(
+            "reaction {:>10}: [{:.6e}, {:.6e}, {:.6e}] N",
+            r.name, r.force[0], r.force[1], r.force[2]
+        );
+    }
+    println!("results in {}", dir.display());
+}
+
+fn run_default() -> Result<(), Error> {
+    let spec = scene::parse_spec(scene::DEFAULT_SCENE, false)?;
+    let scene = Scene::try_from_spec(spec, Path::new("."), "default")?;
+    println!("dhpd: no scene given, running the embedded default (2D bimaterial strip, bond-based DH-PD)\n");
+    let s = run(&scene, None)?;
+    let reference =
+        FemReference::from_json(BIMATERIAL_STRIP_FEM).expect("embedded reference is valid JSON");
+    let scale = 1e-4;
+    let pairs: Vec<(f64, f64)> = (0..s.disc.points.len())
+        .filter(|&i| s.dofs.free_count(i) == 2)
+        .filter_map(|i| {
+            let x = s.disc.points.x[i];
+            reference
+                .grid
+                .interpolate("ux", x[0], x[1])
+                .map(|r| (s.u[i][0], r))
+        })
+        .collect();
+    let stats = ErrorStats::of(pairs, scale);
+    println!("\ncomparison with the scikit-fem P2 reference (validation/bimaterial_bar/fem):");
+    println!(
+        "  u_x at {} free points: max error {:.2} %, RMS {:.2} % of the applied 1e-4 m",
+        stats.count,
+        100.0 * stats.max_relative,
+        100.0 * stats.rms_relative
+    );
+    if let (Some(fem), Some(r)) = (
+        reference.reaction_x,
+        s.reactions.iter().find(|r| r.name == "right"),
+    ) {
+        println!(
+            "  reaction at the right grip: dhpd {:.6e} N, FEM {:.6e} N ({:+.2} %)",
+            r.force[0],
+            fem,
+            100.0 * (r.force[0] / fem - 1.0)
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,275 @@
+//! The static driver: discretise, assemble the linearised `K`, eliminate the
+//! prescribed degrees of freedom, factorise, solve, check the residual and
+//! compute the reaction of every constrained set.
+
+use crate::assembly::dofs::DofMap;
+use crate::assembly::forces::internal_forces;
+use crate::assembly::loads::{external_forces, AppliedLoad};
+use crate::assembly::pattern::Pattern;
+use crate::assembly::stiffness::Stiffness;
+use crate::discretization::{self, Discretization};
+use crate::error::{Error, NumericalError};
+use crate::model::bond_based::BondBased;
+use crate::model::Model;
+use crate::scene::{ModelKind, Scene, SolverMethod};
+use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, SparseLu};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Largest relative residual accepted from a direct solve.
+pub const RESIDUAL_THRESHOLD: f64 = 1e-8;
+
+/// Wall time per phase in seconds.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Timings {
+    /// Point generation (grids, files, holes).
+    pub discretization: f64,
+    /// Neighbour search and bond construction.
+    pub neighbour_search: f64,
+    /// Sparsity pattern.
+    pub pattern: f64,
+    /// Stiffness values, loads and right-hand side.
+    pub assembly: f64,
+    /// Symbolic factorisation (ordering).
+    pub symbolic_factorization: f64,
+    /// Numeric factorisation.
+    pub numeric_factorization: f64,
+    /// Triangular solves, residual and reactions.
+    pub solve: f64,
+}
+
+/// Problem sizes.
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct Counts {
+    /// Points.
+    pub points: usize,
+    /// Bonds (ordered pairs).
+    pub bonds: usize,
+    /// Free degrees of freedom.
+    pub dofs: usize,
+    /// Prescribed degrees of freedom.
+    pub prescribed_dofs: usize,
+    /// Stored entries of the reduced `K` (both triangles).
+    pub nnz_k: usize,
+    /// Stored entries of the Cholesky factor (None for LU).
+    pub nnz_l: Option<usize>,
+    /// Isolated points removed.
+    pub removed_points: usize,
+}
+
+/// Reaction force on a constrained set: the force the support exerts on the body.
+#[derive(Debug, Clone, Serialize)]
+pub struct Reaction {
+    /// Set name.
+    pub name: String,
+    /// Number of points in the set.
+    pub points: usize,
+    /// Sum over the set of `K u − f_ext` (N).
+    pub force: [f64; 3],
+}
+
+/// The reduced linear system, kept for export.
+pub struct LinearSystem {
+    /// Pattern of `K`.
+    pub pattern: Pattern,
+    /// Values of `K`.
+    pub stiffness: Stiffness,
+    /// Right-hand side.
+    pub rhs: Vec<f64>,
+}
+
+/// Everything a static run produces.
+pub struct StaticSolution {
+    /// The discretisation.
+    pub disc: Discretization,
+    /// Degrees of freedom.
+    pub dofs: DofMap,
+    /// Displacement of every point.
+    pub u: Vec<[f64; 3]>,
+    /// Reactions per constrained set.
+    pub reactions: Vec<Reaction>,
+    /// Applied loads.
+    pub loads: Vec<AppliedLoad>,
+    /// `‖K u − b‖/‖b‖` of the reduced system.
+    pub residual: f64,
+    /// Wall time per phase.
+    pub timings: Timings,
+    /// Sizes.
+    pub counts: Counts,
+    /// The reduced system.
+    pub system: LinearSystem,
+}
+
+/// A discretised scene, ready to solve (lets callers check output requests
+/// against the points before any numerics).
+pub struct Prepared {
+    /// Points and bonds.
+    pub disc: Discretization,
+    /// Time spent so far.
+    pub timings: Timings,
+}
+
+/// Discretises `scene` (points, then bonds).
+pub fn prepare(scene: &Scene) -> Result<Prepared, Error> {
+    let mut timings = Timings::default();
+    let t = Instant::now();
+    let raw = discretization::generate_points(scene)?;
+    timings.discretization = t.elapsed().as_secs_f64();
+    let t = Instant::now();
+    let disc = discretization::discretize(scene, raw)?;
+    timings.neighbour_search = t.elapsed().as_secs_f64();
+    Ok(Prepared { disc, timings })
+}
+
+impl Prepared {
+    /// Solves with the scene's model.
+    pub fn solve(self, scene: &Scene) -> Result<StaticSolution, Error> {
+        match scene.model {
+            ModelKind::BondBased => {
+                let model = BondBased::new(
+                    &self.disc,
+                    scene.dimension,
+                    &scene.materials,
+                    scene.thickness,
+                );
+                solve_with(&model, scene, self.disc, self.timings)
+            }
+        }
+    }
+}
+
+/// Discretises and solves the static problem of `scene`.
+pub fn solve(scene: &Scene) -> Result<StaticSolution, Error> {
+    prepare(scene)?.solve(scene)
+}
+
+/// Solves with a given model on a given discretisation.
+pub fn solve_with<M: Model>(
+    model: &M,
+    scene: &Scene,
+    disc: Discretization,
+    mut timings: Timings,
+) -> Result<StaticSolution, Error> {
+    let d = disc.d;
+    let dofs = DofMap::new(&disc.points, d, &scene.boundaries)?;
+    let (f_ext, loads) = external_forces(&disc.points, d, &scene.loads)?;
+    if dofs.n_free() == 0 {
+        return Err(NumericalError::NothingToSolve.into());
+    }
+
+    let t = Instant::now();
+    let pattern = Pattern::new(&disc, &dofs, model.coupling());
+    timings.pattern = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
+    let f_prescribed = internal_forces(model, &disc, &dofs.prescribed, true);
+    let rhs: Vec<f64> = dofs
+        .free_dofs
+        .iter()
+        .map(|&(i, c)| f_ext[i as usize][c as usize] + f_prescribed[i as usize][c as usize])
+        .collect();
+    timings.assembly = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let matrix = stiffness.view(&pattern);
+    let mut solver = match scene.solver {
+        SolverMethod::Cholesky => LinearSolver::Cholesky(Cholesky::analyse(matrix)?),
+        SolverMethod::Lu => LinearSolver::Lu(SparseLu::analyse(matrix)?),
+    };
+    timings.symbolic_factorization = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    solver
+        .factorize(matrix)
+        .map_err(|e| factor_error(e, &dofs, &disc))?;
+    timings.numeric_factorization = t.elapsed().as_secs_f64();
+
+    let t = Instant::now();
+    let mut x = rhs.clone();
+    solver.solve_in_place(&mut x);
+    if x.iter().any(|v| !v.is_finite()) {
+        return Err(NumericalError::NonFinite {
+            what: "the displacement solution".into(),
+        }
+        .into());
+    }
+    let residual = relative_residual(&stiffness.mul(&pattern, &x), &rhs);
+    if !(residual <= RESIDUAL_THRESHOLD) {
+        return Err(NumericalError::ResidualTooLarge {
+            residual,
+            threshold: RESIDUAL_THRESHOLD,
+        }
+        .into());
+    }
+    let u = dofs.expand(&x);
+    let f_int = internal_forces(model, &disc, &u, true);
+    let reactions = dofs
+        .sets
+        .iter()
+        .map(|set| {
+            let mut force = [0.0; 3];
+            for &i in &set.points {
+                for c in 0..d {
+                    force[c] -= f_int[i][c] + f_ext[i][c];
+                }
+            }
+            Reaction {
+                name: set.name.clone(),
+                points: set.points.len(),
+                force,
+            }
+        })
+        .collect();
+    timings.solve = t.elapsed().as_secs_f64();
+
+    let counts = Counts {
+        points: disc.points.len(),
+        bonds: disc.bonds.len(),
+        dofs: dofs.n_free(),
+        prescribed_dofs: disc.points.len() * d - dofs.n_free(),
+        nnz_k: pattern.nnz(),
+        nnz_l: solver.nnz_factor(),
+        removed_points: disc.removed_isolated,
+    };
+    Ok(StaticSolution {
+        disc,
+        dofs,
+        u,
+        reactions,
+        loads,
+        residual,
+        timings,
+        counts,
+        system: LinearSystem {
+            pattern,
+            stiffness,
+            rhs,
+        },
+    })
+}
+
+fn factor_error(e: FactorError, dofs: &DofMap, disc: &Discretization) -> Error {
+    let locate = |k: usize| {
+        let (i, c) = dofs.free_dofs[k];
+        (i as usize, c as usize)
+    };
+    match e {
+        FactorError::NonPositivePivot(k) => {
+            let (point, component) = locate(k);
+            NumericalError::NonPositivePivot {
+                point,
+                component,
+                position: disc.points.x[point],
+            }
+            .into()
+        }
+        FactorError::Singular(k) => {
+            let (point, component) = locate(k);
+            NumericalError::StructurallySingular { point, component }.into()
+        }
+        FactorError::Generic => {
+            NumericalError::Solver("factorisation failed (out of memory?)".into()).into()
+        }
+    }
+}

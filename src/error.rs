@@ -1,0 +1,114 @@
+//! Typed errors, one enum per layer, and the process exit code each maps to.
+//!
+//! | exit code | meaning |
+//! |---|---|
+//! | 0 | success |
+//! | 2 | input error: the scene or a point file is invalid (nothing was computed) |
+//! | 3 | numerical failure: the problem is ill-posed or the solver failed |
+//! | 4 | I/O failure while reading inputs or writing results |
+
+use std::path::PathBuf;
+use thiserror::Error;
+
+/// An invalid input: names the field (a dotted path such as `regions[1].spacing`)
+/// and says what would be valid.
+#[derive(Debug, Clone, Error, PartialEq)]
+#[error("{field}: {message}")]
+pub struct InputError {
+    /// Dotted path of the offending field, e.g. `materials.steel.youngs_modulus`.
+    pub field: String,
+    /// What is wrong and what would be valid.
+    pub message: String,
+}
+
+impl InputError {
+    /// Creates an input error for `field`.
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            field: field.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// A numerical failure: the assembled problem cannot be solved as posed.
+#[derive(Debug, Clone, Error, PartialEq)]
+pub enum NumericalError {
+    /// The Cholesky factorisation met a non-positive pivot.
+    #[error(
+        "the stiffness matrix is not positive definite: non-positive pivot at point {point} \
+         (x = {position:?}), component {component}; the body is under-constrained or the point \
+         is not held by enough bonds"
+    )]
+    NonPositivePivot {
+        point: usize,
+        component: usize,
+        position: [f64; 3],
+    },
+    /// The LU factorisation found a structurally singular matrix.
+    #[error(
+        "the stiffness matrix is structurally singular at point {point}, component {component}"
+    )]
+    StructurallySingular { point: usize, component: usize },
+    /// A point has no intact bond in either direction.
+    #[error(
+        "{count} point(s) have no bond (first: point {first} at {position:?}); set \
+         discretization.isolated_points = \"remove\" to drop them with a warning"
+    )]
+    IsolatedPoints {
+        count: usize,
+        first: usize,
+        position: [f64; 3],
+    },
+    /// The solution failed its residual check.
+    #[error("solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e}")]
+    ResidualTooLarge { residual: f64, threshold: f64 },
+    /// A non-finite number appeared in a result.
+    #[error("non-finite value in {what}")]
+    NonFinite { what: String },
+    /// The linear system has no free degree of freedom.
+    #[error("every degree of freedom is prescribed: nothing to solve")]
+    NothingToSolve,
+    /// faer reported an allocation or other generic failure.
+    #[error("linear solver failure: {0}")]
+    Solver(String),
+}
+
+/// Any failure of a dhpd run.
+#[derive(Debug, Error)]
+pub enum Error {
+    /// Invalid scene or point file.
+    #[error("input error: {0}")]
+    Input(#[from] InputError),
+    /// Ill-posed problem or solver failure.
+    #[error("numerical failure: {0}")]
+    Numerical(#[from] NumericalError),
+    /// Reading or writing a file failed.
+    #[error("I/O error on {path}: {source}")]
+    Io {
+        path: PathBuf,
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Wraps an I/O error with the path it concerns.
+    pub fn io(path: impl Into<PathBuf>, source: std::io::Error) -> Self {
+        Self::Io {
+            path: path.into(),
+            source,
+        }
+    }
+
+    /// The process exit code for this error (see the module table).
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Input(_) => 2,
+            Error::Numerical(_) => 3,
+            Error::Io { .. } => 4,
+        }
+    }
+}
+
+/// Result alias for dhpd.
+pub type Result<T, E = Error> = std::result::Result<T, E>;

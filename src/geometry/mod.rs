@@ -1,0 +1,104 @@
+//! Geometry: small vector helpers, point generators (regular grids, point files),
+//! holes and pre-crack intersection tests.
+//!
+//! Coordinates are always `[f64; 3]`; axes beyond the scene's dimension are zero.
+
+pub mod grid;
+pub mod point_file;
+
+use crate::scene::Crack;
+
+/// `a - b`.
+#[inline]
+pub fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// `a · b`.
+#[inline]
+pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `|a|`.
+#[inline]
+pub fn norm(a: &[f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// `a × b`.
+#[inline]
+pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// Whether the open segment `p`-`q` crosses the crack. Segments that only touch
+/// the crack (an end point on it) do not cross; place cracks between point rows.
+pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
+    match crack {
+        Crack::Segment { from, to } => {
+            let orient = |a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]| {
+                (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+            };
+            let (o1, o2) = (orient(from, to, p), orient(from, to, q));
+            let (o3, o4) = (orient(p, q, from), orient(p, q, to));
+            o1 * o2 < 0.0 && o3 * o4 < 0.0
+        }
+        Crack::Parallelogram {
+            origin,
+            edge1,
+            edge2,
+        } => {
+            let n = cross(edge1, edge2);
+            let (sp, sq) = (dot(&n, &sub(p, origin)), dot(&n, &sub(q, origin)));
+            if sp * sq >= 0.0 {
+                return false;
+            }
+            let t = sp / (sp - sq);
+            let hit = [
+                p[0] + t * (q[0] - p[0]),
+                p[1] + t * (q[1] - p[1]),
+                p[2] + t * (q[2] - p[2]),
+            ];
+            let r = sub(&hit, origin);
+            let (g11, g12, g22) = (dot(edge1, edge1), dot(edge1, edge2), dot(edge2, edge2));
+            let (r1, r2) = (dot(edge1, &r), dot(edge2, &r));
+            let det = g11 * g22 - g12 * g12;
+            let alpha = (g22 * r1 - g12 * r2) / det;
+            let beta = (g11 * r2 - g12 * r1) / det;
+            (0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segment_crossing_is_strict() {
+        let c = Crack::Segment {
+            from: [0.0, 0.0, 0.0],
+            to: [1.0, 0.0, 0.0],
+        };
+        assert!(crosses(&c, &[0.5, -0.1, 0.0], &[0.5, 0.1, 0.0]));
+        assert!(!crosses(&c, &[1.5, -0.1, 0.0], &[1.5, 0.1, 0.0]));
+        assert!(!crosses(&c, &[0.5, 0.0, 0.0], &[0.5, 0.1, 0.0]));
+    }
+
+    #[test]
+    fn parallelogram_crossing() {
+        let c = Crack::Parallelogram {
+            origin: [0.0; 3],
+            edge1: [1.0, 0.0, 0.0],
+            edge2: [0.0, 1.0, 0.0],
+        };
+        assert!(crosses(&c, &[0.5, 0.5, -0.1], &[0.5, 0.5, 0.1]));
+        assert!(!crosses(&c, &[1.5, 0.5, -0.1], &[1.5, 0.5, 0.1]));
+        assert!(!crosses(&c, &[0.5, 0.5, 0.1], &[0.5, 0.5, 0.2]));
+    }
+}

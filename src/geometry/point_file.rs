@@ -1,0 +1,118 @@
+//! Point clouds from text files, one point per line (like Peridigm's text
+//! discretisation):
+//!
+//! ```text
+//! # comment lines start with '#'
+//! x y [z] volume [horizon] [material]
+//! ```
+//!
+//! Columns are separated by commas and/or white space. A file has `d + 1`
+//! columns (positions and volume), `d + 2` (plus the horizon radius) or `d + 3`
+//! (plus a material name from the scene). The volume includes the thickness
+//! (2D) or the area (1D). Without a horizon column a point's horizon is
+//! `horizon_factor × (volume / thickness)^(1/d)`.
+
+use super::grid::RawPoint;
+use crate::error::InputError;
+use crate::scene::{Material, PointFile};
+
+/// Parses point-file text. `field` names the file in errors (`point_files[0]`).
+pub fn parse(
+    text: &str,
+    file: &PointFile,
+    d: usize,
+    thickness: f64,
+    materials: &[Material],
+) -> Result<Vec<RawPoint>, InputError> {
+    let mut points = Vec::new();
+    let mut width = None;
+    for (n, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let at = |msg: String| {
+            InputError::new(
+                format!("{} ({}, line {})", file.field, file.path.display(), n + 1),
+                msg,
+            )
+        };
+        let cols: Vec<&str> = line
+            .split(|c: char| c == ',' || c.is_whitespace())
+            .filter(|s| !s.is_empty())
+            .collect();
+        if cols.len() < d + 1 || cols.len() > d + 3 {
+            return Err(at(format!(
+                "{} columns; a {d}D point file has {} (x.. volume), {} (+ horizon) or {} (+ material)",
+                cols.len(), d + 1, d + 2, d + 3)));
+        }
+        if let Some(w) = width {
+            if w != cols.len() {
+                return Err(at(format!(
+                    "{} columns where earlier lines have {w}; every row needs the same columns",
+                    cols.len()
+                )));
+            }
+        }
+        width = Some(cols.len());
+        let number = |k: usize, what: &str| -> Result<f64, InputError> {
+            let v: f64 = cols[k]
+                .parse()
+                .map_err(|_| at(format!("{what} \"{}\" is not a number", cols[k])))?;
+            if v.is_finite() {
+                Ok(v)
+            } else {
+                Err(at(format!("{what} is {v}; only finite numbers are valid")))
+            }
+        };
+        let mut x = [0.0; 3];
+        for (a, name) in ["x", "y", "z"].iter().enumerate().take(d) {
+            x[a] = number(a, name)?;
+        }
+        let volume = number(d, "volume")?;
+        if volume <= 0.0 {
+            return Err(at(format!("volume {volume} must be positive")));
+        }
+        let spacing = (volume / if d < 3 { thickness } else { 1.0 }).powf(1.0 / d as f64);
+        let horizon = if cols.len() >= d + 2 {
+            let h = number(d + 1, "horizon")?;
+            if h <= 0.0 {
+                return Err(at(format!("horizon {h} must be positive")));
+            }
+            h
+        } else {
+            file.horizon_factor * spacing
+        };
+        let material = if cols.len() == d + 3 {
+            let name = cols[d + 2];
+            materials
+                .iter()
+                .position(|m| m.name == name)
+                .ok_or_else(|| {
+                    let known: Vec<_> = materials.iter().map(|m| m.name.as_str()).collect();
+                    at(format!(
+                        "unknown material \"{name}\"; defined: {}",
+                        known.join(", ")
+                    ))
+                })?
+        } else {
+            file.material.ok_or_else(|| {
+                at("no material column and no `material` in the scene for this file".into())
+            })?
+        };
+        points.push(RawPoint {
+            x,
+            volume,
+            spacing,
+            horizon,
+            material: material as u32,
+        });
+    }
+    if points.is_empty() {
+        return Err(InputError::new(
+            format!("{}.path", file.field),
+            format!("{} contains no point", file.path.display()),
+        ));
+    }
+    Ok(points)
+}

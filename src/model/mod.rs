@@ -1,0 +1,62 @@
+//! Peridynamic models: the bond kernels shared by every driver.
+//!
+//! A model answers, for one owner `o` and its family of bonds: the force each
+//! bond puts on the owner (`+f_oj V_o V_j`; Newton's third law puts the opposite
+//! on `j`, formulation Sec. 2), and the derivatives of those forces with respect
+//! to the displacements involved, delivered one column point at a time so that
+//! the assembly can fill the global stiffness column by column without races.
+//!
+//! Sign convention: `K = −∂F_int/∂u`, so the static problem reads `K u = f_ext`.
+
+pub mod bond_based;
+
+use crate::discretization::Discretization;
+
+/// A 3 × 3 block (only the leading d × d part is used).
+pub type Block = [[f64; 3]; 3];
+
+/// Which points one owner's tangent couples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coupling {
+    /// Owner with each neighbour (bond-based): the global pattern is the bond graph.
+    Star,
+    /// Every pair of points in `{o} ∪ H_o` (state-based models): neighbours of neighbours.
+    Family,
+}
+
+/// The column point of an owner's tangent block.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Column {
+    /// Derivatives with respect to the owner's displacement.
+    Owner,
+    /// Derivatives with respect to the neighbour of this bond.
+    Neighbour(usize),
+}
+
+/// A bond kernel: forces and tangent of one owner's family.
+pub trait Model: Sync {
+    /// The coupling pattern of an owner's tangent.
+    fn coupling(&self) -> Coupling;
+
+    /// Writes, for each bond `b` owned by `owner`, the force it puts on the owner
+    /// into `out[b − first bond of owner]`, for displacements `u`. `linear`
+    /// selects the linearised force (exactly `−K u` restricted to this family).
+    fn owner_forces(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    );
+
+    /// Calls `add(row_point, block)` with the blocks `K[row_point][column]`
+    /// contributed by `owner`'s bonds to the stiffness column of `column`.
+    fn tangent_column(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        column: Column,
+        add: &mut dyn FnMut(usize, &Block),
+    );
+}

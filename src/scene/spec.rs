@@ -1,0 +1,367 @@
+//! The scene file as written by the user (TOML or JSON), deserialised with serde.
+//!
+//! Every section rejects unknown keys. Defaults are documented on each field;
+//! [`crate::scene::Scene::try_from_spec`] validates these raw values into a typed scene.
+
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+
+/// Root of a scene file.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    /// Free-text name used in reports (default: the file stem).
+    pub name: Option<String>,
+    /// Model and dimension (required).
+    pub model: ModelSpec,
+    /// Horizon and bond settings.
+    #[serde(default)]
+    pub discretization: DiscretizationSpec,
+    /// Named materials (at least one).
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialSpec>,
+    /// Regular grids filling boxes, each with its own spacing and material.
+    #[serde(default)]
+    pub regions: Vec<RegionSpec>,
+    /// Point clouds read from text files.
+    #[serde(default)]
+    pub point_files: Vec<PointFileSpec>,
+    /// Circular (2D) or spherical (3D) holes: points inside are removed.
+    #[serde(default)]
+    pub holes: Vec<HoleSpec>,
+    /// Pre-cracks that no bond may cross.
+    #[serde(default)]
+    pub cracks: Vec<CrackSpec>,
+    /// Prescribed displacements on point sets.
+    #[serde(default)]
+    pub boundary: Vec<BoundarySpec>,
+    /// Tractions and body forces.
+    #[serde(default)]
+    pub loads: Vec<LoadSpec>,
+    /// Linear solver choice.
+    #[serde(default)]
+    pub solver: SolverSpec,
+    /// What to write.
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+/// `[model]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    /// `"bond_based"` (default).
+    #[serde(default)]
+    pub kind: ModelKind,
+    /// `"1d"`, `"plane_stress"`, `"plane_strain"` or `"3d"` (required).
+    pub dimension: Dimension,
+    /// 2D only: out-of-plane thickness in m (default 1).
+    pub thickness: Option<f64>,
+    /// 1D only: cross-section area in m² (default 1).
+    pub area: Option<f64>,
+    /// `"dual"` (default): every point keeps its own horizon (DH-PD);
+    /// `"constant"`: every point takes the largest horizon of the body (baseline).
+    #[serde(default)]
+    pub horizons: HorizonMode,
+    /// Bond-based only: accept a Poisson ratio the model cannot represent
+    /// (the micromodulus then matches the bulk modulus). Default false.
+    #[serde(default)]
+    pub allow_any_poisson: bool,
+}
+
+/// Peridynamic model.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ModelKind {
+    /// Bond-based DH-PD (formulation Sec. 3).
+    #[default]
+    BondBased,
+}
+
+/// Spatial setting.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+pub enum Dimension {
+    /// Bar, per cross-section area.
+    #[serde(rename = "1d")]
+    One,
+    /// 2D plane stress, with a thickness.
+    #[serde(rename = "plane_stress")]
+    PlaneStress,
+    /// 2D plane strain, with a thickness.
+    #[serde(rename = "plane_strain")]
+    PlaneStrain,
+    /// Three dimensions.
+    #[serde(rename = "3d")]
+    Three,
+}
+
+impl Dimension {
+    /// Number of spatial dimensions `d`.
+    pub fn d(self) -> usize {
+        match self {
+            Dimension::One => 1,
+            Dimension::PlaneStress | Dimension::PlaneStrain => 2,
+            Dimension::Three => 3,
+        }
+    }
+}
+
+/// How horizons are assigned.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum HorizonMode {
+    /// Each point keeps its own horizon (dual-horizon PD).
+    #[default]
+    Dual,
+    /// Every point takes the largest horizon in the body (constant-horizon baseline).
+    Constant,
+}
+
+/// What to do with points left without any bond.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum IsolatedPolicy {
+    /// Stop with an error naming the first such point (default).
+    #[default]
+    Error,
+    /// Remove them and print a warning.
+    Remove,
+}
+
+/// `[discretization]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DiscretizationSpec {
+    /// Horizon as a multiple of the local spacing (default 3.015).
+    #[serde(default = "default_horizon_factor")]
+    pub horizon_factor: f64,
+    /// Partial-volume correction near the horizon's rim (default true).
+    #[serde(default = "default_true")]
+    pub volume_correction: bool,
+    /// `"error"` (default) or `"remove"`.
+    #[serde(default)]
+    pub isolated_points: IsolatedPolicy,
+}
+
+impl Default for DiscretizationSpec {
+    fn default() -> Self {
+        Self {
+            horizon_factor: default_horizon_factor(),
+            volume_correction: true,
+            isolated_points: IsolatedPolicy::Error,
+        }
+    }
+}
+
+fn default_horizon_factor() -> f64 {
+    3.015
+}
+
+fn default_true() -> bool {
+    true
+}
+
+/// `[materials.NAME]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// Young's modulus E in Pa (required, > 0).
+    pub youngs_modulus: f64,
+    /// Poisson ratio ν. Bond-based: defaults to the value the model implies
+    /// (1/3 plane stress, 1/4 otherwise; none in 1D).
+    pub poisson_ratio: Option<f64>,
+}
+
+/// An axis-aligned box; 1D, 2D or 3D coordinates.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoxSpec {
+    /// Lower corner.
+    pub min: Vec<f64>,
+    /// Upper corner.
+    pub max: Vec<f64>,
+}
+
+/// `[[regions]]`: a box filled with a regular grid.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSpec {
+    /// Name of a material in `[materials]`.
+    pub material: String,
+    /// Grid spacing in m; every box edge must be a whole number of spacings.
+    pub spacing: f64,
+    /// The box to fill (points at cell centres).
+    #[serde(rename = "box")]
+    pub bounds: BoxSpec,
+    /// Explicit horizon radius in m (overrides the factor).
+    pub horizon: Option<f64>,
+    /// Horizon factor for this region (default: `discretization.horizon_factor`).
+    pub horizon_factor: Option<f64>,
+}
+
+/// `[[point_files]]`: rows `x y [z] volume [horizon] [material]`.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointFileSpec {
+    /// Path, relative to the scene file.
+    pub path: String,
+    /// Material for rows without a material column.
+    pub material: Option<String>,
+    /// Horizon factor for rows without a horizon column, times the point's
+    /// equivalent spacing (volume^(1/d)); default `discretization.horizon_factor`.
+    pub horizon_factor: Option<f64>,
+}
+
+/// `[[holes]]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct HoleSpec {
+    /// Centre.
+    pub center: Vec<f64>,
+    /// Radius in m (> 0).
+    pub radius: f64,
+}
+
+/// `[[cracks]]`: a segment `from`-`to` (2D) or a parallelogram
+/// `origin`, `origin + edge1`, `origin + edge2` (3D).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CrackSpec {
+    /// 2D: start of the segment.
+    pub from: Option<Vec<f64>>,
+    /// 2D: end of the segment.
+    pub to: Option<Vec<f64>>,
+    /// 3D: a corner of the crack face.
+    pub origin: Option<Vec<f64>>,
+    /// 3D: first edge vector.
+    pub edge1: Option<Vec<f64>>,
+    /// 3D: second edge vector.
+    pub edge2: Option<Vec<f64>>,
+}
+
+/// Per-component values; an omitted component is free.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ComponentsSpec {
+    /// x component.
+    pub x: Option<f64>,
+    /// y component.
+    pub y: Option<f64>,
+    /// z component.
+    pub z: Option<f64>,
+}
+
+/// `[[boundary]]`: prescribed displacement on the points inside a box.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySpec {
+    /// Name used for the reaction force in the summary.
+    pub name: String,
+    /// Points inside this box (inclusive) are constrained.
+    #[serde(rename = "box")]
+    pub bounds: BoxSpec,
+    /// Prescribed components in m.
+    pub displacement: ComponentsSpec,
+}
+
+/// Kind of load.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoadKind {
+    /// Traction in Pa on a face, applied to the outermost point layer.
+    Traction,
+    /// Force per volume in N/m³.
+    BodyForce,
+}
+
+/// `[[loads]]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSpec {
+    /// Name used in the summary.
+    pub name: String,
+    /// `"traction"` or `"body_force"`.
+    pub kind: LoadKind,
+    /// Traction: the face's outward normal, one of `-x +x -y +y -z +z`.
+    pub face: Option<String>,
+    /// Restrict to the points in this box (body force: default whole body).
+    #[serde(rename = "box")]
+    pub bounds: Option<BoxSpec>,
+    /// Traction vector (Pa) or body force density (N/m³), one entry per dimension.
+    pub value: Vec<f64>,
+}
+
+/// Linear solver.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverMethod {
+    /// Sparse Cholesky (symmetric positive definite), default.
+    #[default]
+    Cholesky,
+    /// Sparse LU: explicit fallback.
+    Lu,
+}
+
+/// `[solver]`
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    /// `"cholesky"` (default) or `"lu"`.
+    #[serde(default)]
+    pub method: SolverMethod,
+}
+
+/// `[output]`
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write `points.vtu` (default true).
+    #[serde(default = "default_true")]
+    pub vtu: bool,
+    /// Write `points.csv` (default true).
+    #[serde(default = "default_true")]
+    pub points_csv: bool,
+    /// Write `K.mtx` and `f.mtx` (reduced system, Matrix Market) (default false).
+    #[serde(default)]
+    pub matrix_market: bool,
+    /// Line profiles, each written to `profile_NAME.csv`.
+    #[serde(default)]
+    pub profiles: Vec<ProfileSpec>,
+    /// Point probes, written together to `probes.csv`.
+    #[serde(default)]
+    pub probes: Vec<ProbeSpec>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        Self {
+            vtu: true,
+            points_csv: true,
+            matrix_market: false,
+            profiles: Vec::new(),
+            probes: Vec::new(),
+        }
+    }
+}
+
+/// `[[output.profiles]]`: the points within half their spacing of a segment.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileSpec {
+    /// File name part: letters, digits, `_` and `-`.
+    pub name: String,
+    /// Start of the segment.
+    pub from: Vec<f64>,
+    /// End of the segment.
+    pub to: Vec<f64>,
+}
+
+/// `[[output.probes]]`: the point nearest to a location.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    /// Name in `probes.csv`.
+    pub name: String,
+    /// Location.
+    pub at: Vec<f64>,
+}

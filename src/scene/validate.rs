@@ -1,0 +1,718 @@
+//! Validation of a [`SceneSpec`] into a typed [`Scene`].
+
+use super::spec::*;
+use crate::error::InputError;
+use crate::model::bond_based;
+use std::path::{Path, PathBuf};
+
+/// An axis-aligned box in 3D coordinates; axes beyond the scene's dimension are unbounded.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Aabb {
+    /// Lower corner.
+    pub min: [f64; 3],
+    /// Upper corner.
+    pub max: [f64; 3],
+}
+
+impl Aabb {
+    /// Whether `x` lies inside, boundary included (with a relative tolerance of 1e-9 of the box size).
+    pub fn contains(&self, x: &[f64; 3]) -> bool {
+        (0..3).all(|a| {
+            let tol = if self.max[a].is_finite() {
+                1e-9 * (self.max[a] - self.min[a]).abs().max(f64::MIN_POSITIVE)
+            } else {
+                0.0
+            };
+            x[a] >= self.min[a] - tol && x[a] <= self.max[a] + tol
+        })
+    }
+}
+
+/// A validated material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Name from the scene.
+    pub name: String,
+    /// Young's modulus in Pa.
+    pub youngs_modulus: f64,
+    /// Poisson ratio (the model's implied value when not given).
+    pub poisson_ratio: f64,
+}
+
+/// How a region's horizons are set.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum HorizonRule {
+    /// `δ = factor × spacing`.
+    Factor(f64),
+    /// A fixed radius in m.
+    Radius(f64),
+}
+
+/// A validated grid region.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+    /// Grid spacing.
+    pub spacing: f64,
+    /// Box filled with points (axes beyond `d` are unbounded).
+    pub bounds: Aabb,
+    /// Horizon rule.
+    pub horizon: HorizonRule,
+}
+
+/// A validated point file reference.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointFile {
+    /// Resolved path.
+    pub path: PathBuf,
+    /// Name of the field in the scene, for error messages (`point_files[0]`).
+    pub field: String,
+    /// Default material for rows without one.
+    pub material: Option<usize>,
+    /// Horizon factor for rows without a horizon.
+    pub horizon_factor: f64,
+}
+
+/// A hole: points whose centre is strictly inside are removed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hole {
+    /// Centre.
+    pub center: [f64; 3],
+    /// Radius.
+    pub radius: f64,
+}
+
+/// A pre-crack no bond may cross.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Crack {
+    /// 2D segment.
+    Segment { from: [f64; 3], to: [f64; 3] },
+    /// 3D parallelogram.
+    Parallelogram {
+        origin: [f64; 3],
+        edge1: [f64; 3],
+        edge2: [f64; 3],
+    },
+}
+
+/// Prescribed displacement on the points of a box.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Prescribed {
+    /// Name for the reaction report.
+    pub name: String,
+    /// Selected points.
+    pub bounds: Aabb,
+    /// Prescribed value per component (`None` = free).
+    pub values: [Option<f64>; 3],
+}
+
+/// Where a load acts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum LoadTarget {
+    /// Outermost point layer facing `axis` in direction `sign` (±1).
+    Face { axis: usize, sign: f64 },
+    /// Every selected point, in proportion to its volume.
+    Volume,
+}
+
+/// A validated load.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Load {
+    /// Name for the summary.
+    pub name: String,
+    /// Face or volume.
+    pub target: LoadTarget,
+    /// Restricting box (None = whole body).
+    pub bounds: Option<Aabb>,
+    /// Traction (Pa) or force density (N/m³).
+    pub value: [f64; 3],
+}
+
+/// A validated line profile.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Profile {
+    /// Name (safe as a file name).
+    pub name: String,
+    /// Start.
+    pub from: [f64; 3],
+    /// End.
+    pub to: [f64; 3],
+}
+
+/// A validated probe.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Probe {
+    /// Name.
+    pub name: String,
+    /// Location.
+    pub at: [f64; 3],
+}
+
+/// What to write.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputSettings {
+    /// `points.vtu`.
+    pub vtu: bool,
+    /// `points.csv`.
+    pub points_csv: bool,
+    /// `K.mtx`, `f.mtx`.
+    pub matrix_market: bool,
+    /// Profiles.
+    pub profiles: Vec<Profile>,
+    /// Probes.
+    pub probes: Vec<Probe>,
+}
+
+/// A validated scene: everything the numerics need, nothing they do not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name used in reports.
+    pub name: String,
+    /// Model.
+    pub model: ModelKind,
+    /// Spatial setting.
+    pub dimension: Dimension,
+    /// 2D thickness, 1D area, 1 in 3D: the factor from per-unit quantities to volumes.
+    pub thickness: f64,
+    /// Dual or constant horizons.
+    pub horizons: HorizonMode,
+    /// Partial-volume correction on or off.
+    pub volume_correction: bool,
+    /// Isolated-point policy.
+    pub isolated_points: IsolatedPolicy,
+    /// Materials, indexed by regions and points.
+    pub materials: Vec<Material>,
+    /// Grid regions.
+    pub regions: Vec<Region>,
+    /// Point files.
+    pub point_files: Vec<PointFile>,
+    /// Holes.
+    pub holes: Vec<Hole>,
+    /// Pre-cracks.
+    pub cracks: Vec<Crack>,
+    /// Prescribed displacements.
+    pub boundaries: Vec<Prescribed>,
+    /// Loads.
+    pub loads: Vec<Load>,
+    /// Solver method.
+    pub solver: SolverMethod,
+    /// Output settings.
+    pub output: OutputSettings,
+}
+
+impl Scene {
+    /// Spatial dimension `d`.
+    pub fn d(&self) -> usize {
+        self.dimension.d()
+    }
+
+    /// Validates a raw spec. `base` resolves relative point-file paths;
+    /// `default_name` is used when the scene has no `name`.
+    pub fn try_from_spec(
+        spec: SceneSpec,
+        base: &Path,
+        default_name: &str,
+    ) -> Result<Scene, InputError> {
+        let dimension = spec.model.dimension;
+        let d = dimension.d();
+        let thickness = thickness(&spec.model)?;
+        let horizon_factor = spec.discretization.horizon_factor;
+        check_horizon_factor("discretization.horizon_factor", horizon_factor)?;
+        let materials = materials(&spec)?;
+        let material_index = |field: &str, name: &str| {
+            materials
+                .iter()
+                .position(|m| m.name == name)
+                .ok_or_else(|| {
+                    let known: Vec<_> = materials.iter().map(|m| m.name.as_str()).collect();
+                    InputError::new(
+                        field,
+                        format!("unknown material \"{name}\"; defined: {}", known.join(", ")),
+                    )
+                })
+        };
+
+        let mut regions = Vec::new();
+        for (k, r) in spec.regions.iter().enumerate() {
+            let f = format!("regions[{k}]");
+            let material = material_index(&format!("{f}.material"), &r.material)?;
+            positive(&format!("{f}.spacing"), r.spacing)?;
+            let bounds = aabb(&format!("{f}.box"), &r.bounds, d)?;
+            for a in 0..d {
+                let cells = (bounds.max[a] - bounds.min[a]) / r.spacing;
+                if (cells - cells.round()).abs() > 1e-6 * cells.max(1.0) {
+                    return Err(InputError::new(
+                        format!("{f}.box"),
+                        format!("extent {} along axis {a} is not a whole number of spacings ({cells:.4} × {}); \
+                                 adjust the box or the spacing", bounds.max[a] - bounds.min[a], r.spacing),
+                    ));
+                }
+            }
+            let horizon = match (r.horizon, r.horizon_factor) {
+                (Some(_), Some(_)) => {
+                    return Err(InputError::new(
+                        format!("{f}.horizon"),
+                        "give either horizon or horizon_factor, not both",
+                    ))
+                }
+                (Some(h), None) => {
+                    positive(&format!("{f}.horizon"), h)?;
+                    if h <= r.spacing {
+                        return Err(InputError::new(format!("{f}.horizon"), format!(
+                            "horizon {h} is not larger than the spacing {}: no point would have a neighbour; \
+                             use a horizon of about 3 spacings", r.spacing)));
+                    }
+                    HorizonRule::Radius(h)
+                }
+                (None, Some(m)) => {
+                    check_horizon_factor(&format!("{f}.horizon_factor"), m)?;
+                    HorizonRule::Factor(m)
+                }
+                (None, None) => HorizonRule::Factor(horizon_factor),
+            };
+            regions.push(Region {
+                material,
+                spacing: r.spacing,
+                bounds,
+                horizon,
+            });
+        }
+        for i in 0..regions.len() {
+            for j in 0..i {
+                if overlap(&regions[i].bounds, &regions[j].bounds, d) {
+                    return Err(InputError::new(
+                        format!("regions[{i}].box"),
+                        format!(
+                            "overlaps regions[{j}].box; regions must not overlap (they may touch)"
+                        ),
+                    ));
+                }
+            }
+        }
+
+        let mut point_files = Vec::new();
+        for (k, p) in spec.point_files.iter().enumerate() {
+            let f = format!("point_files[{k}]");
+            if p.path.trim().is_empty() {
+                return Err(InputError::new(format!("{f}.path"), "empty path"));
+            }
+            let material = p
+                .material
+                .as_deref()
+                .map(|m| material_index(&format!("{f}.material"), m))
+                .transpose()?;
+            let factor = p.horizon_factor.unwrap_or(horizon_factor);
+            check_horizon_factor(&format!("{f}.horizon_factor"), factor)?;
+            point_files.push(PointFile {
+                path: base.join(&p.path),
+                field: f,
+                material,
+                horizon_factor: factor,
+            });
+        }
+        if regions.is_empty() && point_files.is_empty() {
+            return Err(InputError::new(
+                "regions",
+                "the scene has no points: add [[regions]] or [[point_files]]",
+            ));
+        }
+
+        let mut holes = Vec::new();
+        for (k, h) in spec.holes.iter().enumerate() {
+            let f = format!("holes[{k}]");
+            if d == 1 {
+                return Err(InputError::new(f, "holes need 2D or 3D"));
+            }
+            positive(&format!("{f}.radius"), h.radius)?;
+            holes.push(Hole {
+                center: coords(&format!("{f}.center"), &h.center, d)?,
+                radius: h.radius,
+            });
+        }
+
+        let mut cracks = Vec::new();
+        for (k, c) in spec.cracks.iter().enumerate() {
+            cracks.push(crack(&format!("cracks[{k}]"), c, d)?);
+        }
+
+        let mut boundaries = Vec::new();
+        for (k, b) in spec.boundary.iter().enumerate() {
+            let f = format!("boundary[{k}]");
+            name(&format!("{f}.name"), &b.name)?;
+            if spec.boundary[..k].iter().any(|o| o.name == b.name) {
+                return Err(InputError::new(
+                    format!("{f}.name"),
+                    format!("\"{}\" is used twice", b.name),
+                ));
+            }
+            let values = components(&format!("{f}.displacement"), &b.displacement, d)?;
+            boundaries.push(Prescribed {
+                name: b.name.clone(),
+                bounds: aabb(&format!("{f}.box"), &b.bounds, d)?,
+                values,
+            });
+        }
+
+        let mut loads = Vec::new();
+        for (k, l) in spec.loads.iter().enumerate() {
+            loads.push(load(&format!("loads[{k}]"), l, d)?);
+        }
+
+        let output = output(&spec.output, d)?;
+        let scene_name = spec
+            .name
+            .clone()
+            .unwrap_or_else(|| default_name.to_string());
+
+        let scene = Scene {
+            name: scene_name,
+            model: spec.model.kind,
+            dimension,
+            thickness,
+            horizons: spec.model.horizons,
+            volume_correction: spec.discretization.volume_correction,
+            isolated_points: spec.discretization.isolated_points,
+            materials,
+            regions,
+            point_files,
+            holes,
+            cracks,
+            boundaries,
+            loads,
+            solver: spec.solver.method,
+            output,
+        };
+        if scene.model == ModelKind::BondBased {
+            for (m, spec_m) in scene.materials.iter().zip(spec.materials.values()) {
+                bond_based::check_material(
+                    dimension,
+                    m,
+                    spec_m.poisson_ratio.is_some(),
+                    spec.model.allow_any_poisson,
+                )
+                .map_err(|msg| {
+                    InputError::new(format!("materials.{}.poisson_ratio", m.name), msg)
+                })?;
+            }
+        }
+        Ok(scene)
+    }
+}
+
+fn thickness(m: &ModelSpec) -> Result<f64, InputError> {
+    match (m.dimension, m.thickness, m.area) {
+        (Dimension::One, None, a) => a.map_or(Ok(1.0), |a| positive("model.area", a).map(|_| a)),
+        (Dimension::One, Some(_), _) => Err(InputError::new(
+            "model.thickness",
+            "a 1D bar has an area, not a thickness; use model.area",
+        )),
+        (Dimension::PlaneStress | Dimension::PlaneStrain, t, None) => {
+            t.map_or(Ok(1.0), |t| positive("model.thickness", t).map(|_| t))
+        }
+        (Dimension::PlaneStress | Dimension::PlaneStrain, _, Some(_)) => Err(InputError::new(
+            "model.area",
+            "2D uses model.thickness, not an area",
+        )),
+        (Dimension::Three, None, None) => Ok(1.0),
+        (Dimension::Three, _, _) => Err(InputError::new(
+            "model.thickness",
+            "3D takes neither a thickness nor an area",
+        )),
+    }
+}
+
+fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
+    if spec.materials.is_empty() {
+        return Err(InputError::new(
+            "materials",
+            "no material defined: add [materials.NAME] with youngs_modulus",
+        ));
+    }
+    let implied = bond_based::implied_poisson_ratio(spec.model.dimension);
+    spec.materials
+        .iter()
+        .map(|(name, m)| {
+            let f = format!("materials.{name}");
+            positive(&format!("{f}.youngs_modulus"), m.youngs_modulus)?;
+            if let Some(nu) = m.poisson_ratio {
+                let upper = if spec.model.dimension == Dimension::PlaneStress { 1.0 } else { 0.5 };
+                if !nu.is_finite() || nu <= -1.0 || nu >= upper {
+                    return Err(InputError::new(format!("{f}.poisson_ratio"), format!(
+                        "{nu} is outside (-1, {upper}), the range of a stable isotropic material here")));
+                }
+            }
+            Ok(Material { name: name.clone(), youngs_modulus: m.youngs_modulus, poisson_ratio: m.poisson_ratio.unwrap_or(implied) })
+        })
+        .collect()
+}
+
+fn positive(field: &str, v: f64) -> Result<(), InputError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            field,
+            format!("{v} is not a finite positive number"),
+        ))
+    }
+}
+
+fn check_horizon_factor(field: &str, m: f64) -> Result<(), InputError> {
+    if !m.is_finite() || m <= 1.0 {
+        return Err(InputError::new(field, format!(
+            "{m} would make the horizon no larger than the spacing (no neighbours); use a value above 1, typically 3.015")));
+    }
+    if m > 20.0 {
+        return Err(InputError::new(
+            field,
+            format!("{m} is implausibly large (above 20 spacings); typical values are 2 to 5"),
+        ));
+    }
+    Ok(())
+}
+
+fn name(field: &str, n: &str) -> Result<(), InputError> {
+    if n.is_empty()
+        || !n
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+    {
+        return Err(InputError::new(
+            field,
+            format!("\"{n}\" must be non-empty and use only letters, digits, '_' and '-'"),
+        ));
+    }
+    Ok(())
+}
+
+/// Pads a coordinate list of length `d` to 3D with zeros.
+fn coords(field: &str, v: &[f64], d: usize) -> Result<[f64; 3], InputError> {
+    if v.len() != d {
+        return Err(InputError::new(
+            field,
+            format!("has {} coordinate(s); this {d}D scene needs {d}", v.len()),
+        ));
+    }
+    if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
+        return Err(InputError::new(
+            field,
+            format!("{bad} is not a finite number"),
+        ));
+    }
+    let mut x = [0.0; 3];
+    x[..d].copy_from_slice(v);
+    Ok(x)
+}
+
+fn aabb(field: &str, b: &BoxSpec, d: usize) -> Result<Aabb, InputError> {
+    let min = coords(&format!("{field}.min"), &b.min, d)?;
+    let max = coords(&format!("{field}.max"), &b.max, d)?;
+    let mut bounds = Aabb {
+        min: [f64::NEG_INFINITY; 3],
+        max: [f64::INFINITY; 3],
+    };
+    for a in 0..d {
+        if max[a] < min[a] {
+            return Err(InputError::new(
+                field,
+                format!("max[{a}] = {} is below min[{a}] = {}", max[a], min[a]),
+            ));
+        }
+        bounds.min[a] = min[a];
+        bounds.max[a] = max[a];
+    }
+    Ok(bounds)
+}
+
+fn overlap(a: &Aabb, b: &Aabb, d: usize) -> bool {
+    (0..d).all(|k| {
+        let lo = a.min[k].max(b.min[k]);
+        let hi = a.max[k].min(b.max[k]);
+        hi - lo > 1e-9 * (a.max[k] - a.min[k]).max(b.max[k] - b.min[k])
+    })
+}
+
+fn components(field: &str, c: &ComponentsSpec, d: usize) -> Result<[Option<f64>; 3], InputError> {
+    let values = [c.x, c.y, c.z];
+    for (a, axis) in ["x", "y", "z"].iter().enumerate() {
+        match values[a] {
+            Some(_) if a >= d => {
+                return Err(InputError::new(
+                    format!("{field}.{axis}"),
+                    format!("a {d}D scene has no {axis} component"),
+                ))
+            }
+            Some(v) if !v.is_finite() => {
+                return Err(InputError::new(
+                    format!("{field}.{axis}"),
+                    format!("{v} is not finite"),
+                ))
+            }
+            _ => {}
+        }
+    }
+    if values.iter().all(Option::is_none) {
+        return Err(InputError::new(
+            field,
+            "prescribes no component; give at least one of x, y, z",
+        ));
+    }
+    Ok(values)
+}
+
+fn crack(field: &str, c: &CrackSpec, d: usize) -> Result<Crack, InputError> {
+    match (d, c) {
+        (
+            2,
+            CrackSpec {
+                from: Some(a),
+                to: Some(b),
+                origin: None,
+                edge1: None,
+                edge2: None,
+            },
+        ) => {
+            let (from, to) = (
+                coords(&format!("{field}.from"), a, 2)?,
+                coords(&format!("{field}.to"), b, 2)?,
+            );
+            if from == to {
+                return Err(InputError::new(field, "the segment has zero length"));
+            }
+            Ok(Crack::Segment { from, to })
+        }
+        (
+            3,
+            CrackSpec {
+                from: None,
+                to: None,
+                origin: Some(o),
+                edge1: Some(e1),
+                edge2: Some(e2),
+            },
+        ) => {
+            let (origin, edge1, edge2) = (
+                coords(&format!("{field}.origin"), o, 3)?,
+                coords(&format!("{field}.edge1"), e1, 3)?,
+                coords(&format!("{field}.edge2"), e2, 3)?,
+            );
+            let n = crate::geometry::cross(&edge1, &edge2);
+            if crate::geometry::norm(&n) == 0.0 {
+                return Err(InputError::new(
+                    field,
+                    "edge1 and edge2 are parallel: the crack face has no area",
+                ));
+            }
+            Ok(Crack::Parallelogram {
+                origin,
+                edge1,
+                edge2,
+            })
+        }
+        (2, _) => Err(InputError::new(
+            field,
+            "a 2D crack is a segment: give exactly `from` and `to`",
+        )),
+        (3, _) => Err(InputError::new(
+            field,
+            "a 3D crack is a parallelogram: give exactly `origin`, `edge1` and `edge2`",
+        )),
+        _ => Err(InputError::new(field, "pre-cracks need 2D or 3D")),
+    }
+}
+
+fn load(field: &str, l: &LoadSpec, d: usize) -> Result<Load, InputError> {
+    name(&format!("{field}.name"), &l.name)?;
+    let v = coords(&format!("{field}.value"), &l.value, d)?;
+    let bounds = l
+        .bounds
+        .as_ref()
+        .map(|b| aabb(&format!("{field}.box"), b, d))
+        .transpose()?;
+    let target = match (l.kind, l.face.as_deref()) {
+        (LoadKind::Traction, Some(face)) => {
+            let axes = ["x", "y", "z"];
+            let parsed = face
+                .strip_prefix('+')
+                .map(|a| (a, 1.0))
+                .or_else(|| face.strip_prefix('-').map(|a| (a, -1.0)));
+            match parsed
+                .and_then(|(a, s)| axes[..d].iter().position(|x| *x == a).map(|axis| (axis, s)))
+            {
+                Some((axis, sign)) => LoadTarget::Face { axis, sign },
+                None => {
+                    let valid: Vec<String> = axes[..d]
+                        .iter()
+                        .flat_map(|a| [format!("-{a}"), format!("+{a}")])
+                        .collect();
+                    return Err(InputError::new(
+                        format!("{field}.face"),
+                        format!("\"{face}\" is not one of {}", valid.join(", ")),
+                    ));
+                }
+            }
+        }
+        (LoadKind::Traction, None) => {
+            return Err(InputError::new(
+                format!("{field}.face"),
+                "a traction needs a face: one of -x, +x, -y, +y, -z, +z",
+            ))
+        }
+        (LoadKind::BodyForce, None) => LoadTarget::Volume,
+        (LoadKind::BodyForce, Some(_)) => {
+            return Err(InputError::new(
+                format!("{field}.face"),
+                "a body force acts on a volume; remove `face` (use `box` to restrict it)",
+            ))
+        }
+    };
+    Ok(Load {
+        name: l.name.clone(),
+        target,
+        bounds,
+        value: v,
+    })
+}
+
+fn output(o: &OutputSpec, d: usize) -> Result<OutputSettings, InputError> {
+    let mut profiles = Vec::new();
+    for (k, p) in o.profiles.iter().enumerate() {
+        let f = format!("output.profiles[{k}]");
+        name(&format!("{f}.name"), &p.name)?;
+        if o.profiles[..k].iter().any(|q| q.name == p.name) {
+            return Err(InputError::new(
+                format!("{f}.name"),
+                format!("\"{}\" is used twice", p.name),
+            ));
+        }
+        let (from, to) = (
+            coords(&format!("{f}.from"), &p.from, d)?,
+            coords(&format!("{f}.to"), &p.to, d)?,
+        );
+        if from == to {
+            return Err(InputError::new(f, "from and to coincide"));
+        }
+        profiles.push(Profile {
+            name: p.name.clone(),
+            from,
+            to,
+        });
+    }
+    let mut probes = Vec::new();
+    for (k, p) in o.probes.iter().enumerate() {
+        let f = format!("output.probes[{k}]");
+        name(&format!("{f}.name"), &p.name)?;
+        probes.push(Probe {
+            name: p.name.clone(),
+            at: coords(&format!("{f}.at"), &p.at, d)?,
+        });
+    }
+    Ok(OutputSettings {
+        vtu: o.vtu,
+        points_csv: o.points_csv,
+        matrix_market: o.matrix_market,
+        profiles,
+        probes,
+    })
+}
