@@ -51,5 +51,6 @@ pub mod output;
 pub mod reference;
 pub mod scene;
 pub mod solve;
+pub mod validation;
 
 pub use error::{Error, InputError, NumericalError};

@@ -1,18 +1,18 @@
 //! Discretisation: points with per-point volume, spacing, horizon and material,
 //! and their bonds.
 //!
-//! Bonds (formulation Sec. 1): `i → j` exists when `|x_j − x_i| ≤ δ_i` and the
-//! segment crosses no pre-crack. Its owner is `i`. Bonds are stored per owner in
+//! Bonds (formulation Sec. 1): `i → j` exists when `j` lies in the horizon of
+//! `i` (with a positive partial-volume factor) and the segment crosses no pre-crack. Its owner is `i`. Bonds are stored per owner in
 //! CSR form (`offsets`, `neighbour`), with the partial-volume factor `ν_ij`
 //! (formulation Sec. 6) and an intact flag per bond. The dual horizon
 //! `H'_i = { j : i ∈ H_j }` is implied and never stored here.
 //!
-//! Partial-volume rule (000 Eq. A.1, as printed), with `r_j` half the
-//! neighbour's spacing: `ν_ij = 1` for `|ξ| ≤ δ_i − r_j`,
-//! `(δ_i + r_j − |ξ|)/(2 r_j)` for `δ_i − r_j < |ξ| ≤ δ_i`, so the factor drops
-//! from 1/2 to 0 at the horizon's edge. Points beyond `δ_i` are not bonded.
+//! The partial-volume rule is chosen per scene ([`partial_volume`]); the
+//! default counts the exact overlap of each neighbour's equivalent disc or ball
+//! with the horizon, so bonds reach up to `δ_i + r_j`.
 
 mod neighbours;
+pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::grid::{self, RawPoint};

@@ -1,24 +1,27 @@
 //! Neighbour search with a k-d tree (kiddo), one radius query per point in parallel.
 
+use super::partial_volume::PartialVolume;
 use super::{Bonds, Points};
 use crate::error::{Error, InputError};
 use crate::geometry::{crosses, norm, sub};
-use crate::scene::Crack;
+use crate::scene::{Crack, VolumeCorrection};
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 
-/// Finds every bond `i → j` with `|x_j − x_i| ≤ δ_i` that crosses no crack, with
-/// its partial-volume factor; each owner's bonds are sorted by neighbour index.
+/// Finds every bond `i → j` with a positive partial-volume factor (for the
+/// `overlap` rule: `|x_j − x_i| < δ_i + r_j`, otherwise `≤ δ_i`) that crosses no
+/// crack; each owner's bonds are sorted by neighbour index.
 pub fn find_bonds(
     points: &Points,
     d: usize,
     cracks: &[Crack],
-    volume_correction: bool,
+    rule: VolumeCorrection,
 ) -> Result<Bonds, Error> {
+    let pv = PartialVolume { rule, d };
     let families = match d {
-        1 => families::<1>(points, cracks, volume_correction),
-        2 => families::<2>(points, cracks, volume_correction),
-        _ => families::<3>(points, cracks, volume_correction),
+        1 => families::<1>(points, cracks, pv),
+        2 => families::<2>(points, cracks, pv),
+        _ => families::<3>(points, cracks, pv),
     }?;
     let mut offsets = Vec::with_capacity(points.len() + 1);
     offsets.push(0);
@@ -45,8 +48,13 @@ type Family = Vec<(u32, f64)>;
 fn families<const K: usize>(
     points: &Points,
     cracks: &[Crack],
-    volume_correction: bool,
+    pv: PartialVolume,
 ) -> Result<Vec<Family>, Error> {
+    let reach = points
+        .spacing
+        .iter()
+        .map(|&h| pv.reach(h))
+        .fold(0.0, f64::max);
     let coords: Vec<[f64; K]> = points
         .x
         .iter()
@@ -63,9 +71,10 @@ fn families<const K: usize>(
         .enumerate()
         .map(|(i, xi)| {
             let delta = points.horizon[i];
+            let radius = delta + reach;
             let found = tree
                 .query(xi)
-                .within::<SquaredEuclidean<f64>>(delta * delta)
+                .within::<SquaredEuclidean<f64>>(radius * radius)
                 .unsorted()
                 .execute();
             let mut family: Family = Vec::with_capacity(found.len());
@@ -85,19 +94,12 @@ fn families<const K: usize>(
                     )
                     .into());
                 }
-                if r > delta
-                    || cracks
+                let factor = pv.factor(r, delta, points.spacing[j]);
+                if factor > 0.0
+                    && !cracks
                         .iter()
                         .any(|c| crosses(c, &points.x[i], &points.x[j]))
                 {
-                    continue;
-                }
-                let factor = if volume_correction {
-                    partial_volume(r, delta, 0.5 * points.spacing[j])
-                } else {
-                    1.0
-                };
-                if factor > 0.0 {
                     family.push((j as u32, factor));
                 }
             }
@@ -105,16 +107,4 @@ fn families<const K: usize>(
             Ok(family)
         })
         .collect()
-}
-
-/// Partial-volume factor of 000 Eq. (A.1): 1 inside `δ − r_j`, a linear ramp from
-/// 1 to 1/2 up to `δ`, 0 beyond.
-pub fn partial_volume(distance: f64, horizon: f64, half_spacing: f64) -> f64 {
-    if distance <= horizon - half_spacing {
-        1.0
-    } else if distance <= horizon {
-        (horizon + half_spacing - distance) / (2.0 * half_spacing)
-    } else {
-        0.0
-    }
 }

@@ -128,6 +128,20 @@ pub enum IsolatedPolicy {
     Remove,
 }
 
+/// Partial-volume (horizon rim) rule, formulation Sec. 6.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VolumeCorrection {
+    /// Exact overlap of the horizon (radius δ_i) with the neighbour's equivalent
+    /// segment, disc or ball (000 Eq. A.2/A.3); bonds reach to `δ_i + r_j`. Default.
+    #[default]
+    Overlap,
+    /// 000 Eq. A.1 as printed: ramp from 1 at `δ_i − Δ_j/2` to 1/2 at `δ_i`, no bond beyond `δ_i`.
+    Ramp,
+    /// Full volume for every neighbour within `δ_i`.
+    None,
+}
+
 /// `[discretization]`
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -135,9 +149,10 @@ pub struct DiscretizationSpec {
     /// Horizon as a multiple of the local spacing (default 3.015).
     #[serde(default = "default_horizon_factor")]
     pub horizon_factor: f64,
-    /// Partial-volume correction near the horizon's rim (default true).
-    #[serde(default = "default_true")]
-    pub volume_correction: bool,
+    /// Partial-volume rule near the horizon's rim: `"overlap"` (default),
+    /// `"ramp"` (000 Eq. A.1 as printed) or `"none"`.
+    #[serde(default)]
+    pub volume_correction: VolumeCorrection,
     /// `"error"` (default) or `"remove"`.
     #[serde(default)]
     pub isolated_points: IsolatedPolicy,
@@ -147,7 +162,7 @@ impl Default for DiscretizationSpec {
     fn default() -> Self {
         Self {
             horizon_factor: default_horizon_factor(),
-            volume_correction: true,
+            volume_correction: VolumeCorrection::Overlap,
             isolated_points: IsolatedPolicy::Error,
         }
     }

@@ -177,8 +177,8 @@ pub struct Scene {
     pub thickness: f64,
     /// Dual or constant horizons.
     pub horizons: HorizonMode,
-    /// Partial-volume correction on or off.
-    pub volume_correction: bool,
+    /// Partial-volume rule.
+    pub volume_correction: VolumeCorrection,
     /// Isolated-point policy.
     pub isolated_points: IsolatedPolicy,
     /// Materials, indexed by regions and points.

@@ -1,0 +1,99 @@
+//! Shared helpers for the integration tests: scene builders and dense views.
+#![allow(dead_code)]
+
+use dhpd::assembly::dofs::DofMap;
+use dhpd::assembly::pattern::Pattern;
+use dhpd::assembly::stiffness::Stiffness;
+use dhpd::discretization::{self, Discretization};
+use dhpd::model::Model;
+use dhpd::scene::{parse_spec, Scene};
+use std::path::Path;
+
+/// Parses and validates a TOML scene.
+pub fn scene(text: &str) -> Scene {
+    Scene::try_from_spec(
+        parse_spec(text, false).expect("test scene parses"),
+        Path::new("."),
+        "test",
+    )
+    .expect("test scene is valid")
+}
+
+/// A small body in each setting, optionally with a second region of twice the
+/// spacing (a horizon jump) and a second material.
+pub fn small_body(dimension: &str, jump: bool, extra_model: &str) -> Scene {
+    let (d, h) = match dimension {
+        "1d" => (1, 0.1),
+        "3d" => (3, 0.25),
+        _ => (2, 0.1),
+    };
+    let lo = |x: f64| match d {
+        1 => format!("[{x}]"),
+        2 => format!("[{x}, 0.0]"),
+        _ => format!("[{x}, 0.0, 0.0]"),
+    };
+    let hi = |x: f64| match d {
+        1 => format!("[{x}]"),
+        2 => format!("[{x}, 0.8]"),
+        _ => format!("[{x}, 1.0, 1.0]"),
+    };
+    let mut text = format!(
+        "[model]\ndimension = \"{dimension}\"\n{extra_model}\n\
+         [materials.a]\nyoungs_modulus = 2.0e9\n[materials.b]\nyoungs_modulus = 5.0e9\n\
+         [[regions]]\nmaterial = \"a\"\nspacing = {h}\nbox = {{ min = {}, max = {} }}\n",
+        lo(0.0),
+        hi(if d == 3 { 1.0 } else { 0.8 })
+    );
+    if jump {
+        let x0 = if d == 3 { 1.0 } else { 0.8 };
+        text += &format!(
+            "[[regions]]\nmaterial = \"b\"\nspacing = {}\nbox = {{ min = {}, max = {} }}\n",
+            2.0 * h,
+            lo(x0),
+            hi(x0 + 8.0 * h)
+        );
+    }
+    scene(&text)
+}
+
+/// Discretisation of a scene.
+pub fn disc(scene: &Scene) -> Discretization {
+    discretization::build(scene).expect("discretisation succeeds")
+}
+
+/// The dense stiffness on all degrees of freedom (no constraint), `n d × n d`.
+pub fn dense_stiffness<M: Model>(model: &M, disc: &Discretization) -> Vec<Vec<f64>> {
+    let dofs = DofMap::new(&disc.points, disc.d, &[]).unwrap();
+    let pattern = Pattern::new(disc, &dofs, model.coupling());
+    let k = Stiffness::assemble(model, disc, &dofs, &pattern);
+    let n = dofs.n_free();
+    let mut dense = vec![vec![0.0; n]; n];
+    for col in 0..n {
+        for p in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+            dense[pattern.row_idx[p]][col] = k.values[p];
+        }
+    }
+    dense
+}
+
+/// Deterministic pseudo-random numbers in [-1, 1) (xorshift), so tests need no extra crate.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed.wrapping_mul(0x9E3779B97F4A7C15) | 1)
+    }
+    pub fn next(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
+/// Largest absolute entry of a list of vectors (first `d` components).
+pub fn max_abs(v: &[[f64; 3]], d: usize) -> f64 {
+    v.iter()
+        .flat_map(|x| x[..d].iter())
+        .fold(0.0f64, |m, x| m.max(x.abs()))
+}
