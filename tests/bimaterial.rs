@@ -1,0 +1,148 @@
+//! Bimaterial bar (1D) and strip (2D) against independent references
+//! (000 Sec. 5.1; validation/bimaterial_bar).
+//!
+//! References: the closed-form series-spring solution (1D) and the committed
+//! scikit-fem P2 solution (2D, `validation/bimaterial_bar/fem/reference.json`,
+//! converged to 3e-9 m in u_x, far below the tolerances here). Supports sit at the
+//! centres of the innermost constrained points (see `dhpd::validation`).
+
+use dhpd::reference::{ErrorStats, FemReference, BIMATERIAL_STRIP_FEM};
+use dhpd::validation::{Bimaterial, BAR_DISPLACEMENT};
+
+/// Max and RMS error of u (in units of the applied displacement) over free points
+/// farther than one horizon from both constrained layers, and the reaction error.
+fn bar_errors(case: &Bimaterial) -> (ErrorStats, f64) {
+    let s = case.solve().expect("bar solves");
+    let (a, b) = (case.support_left(), case.support_right());
+    let pairs: Vec<(f64, f64)> = (0..s.disc.points.len())
+        .filter(|&i| s.dofs.free_count(i) == 1)
+        .map(|i| (s.disc.points.x[i][0], s.u[i][0]))
+        .filter(|(x, _)| *x > a + 3.015 * case.dx_left && *x < b - 3.015 * case.dx_right)
+        .map(|(x, u)| (u, case.series_displacement(x)))
+        .collect();
+    let reaction = s
+        .reactions
+        .iter()
+        .find(|r| r.name == "right")
+        .unwrap()
+        .force[0];
+    (
+        ErrorStats::of(pairs, BAR_DISPLACEMENT),
+        reaction / case.series_reaction(1.0) - 1.0,
+    )
+}
+
+/// Issue target: DH-PD within 1 % of the analytical displacement away from the
+/// constrained layers, for both spacing orders; the reaction (the sectional force)
+/// within 1 % too. The remaining error is PD's nonlocal boundary layer at the
+/// interface and at the supports, which is O(δ/L).
+#[test]
+fn bar_1d_dual_horizon_matches_series_springs() {
+    for (dl, dr) in [(0.01, 0.005), (0.005, 0.01)] {
+        let (stats, reaction) = bar_errors(&Bimaterial {
+            dx_left: dl,
+            dx_right: dr,
+            constant_horizon: false,
+            strip: false,
+        });
+        assert!(stats.count > 100);
+        assert!(
+            stats.max_relative < 0.01,
+            "spacing {dl}/{dr}: max error {:.3} %",
+            100.0 * stats.max_relative
+        );
+        assert!(
+            reaction.abs() < 0.01,
+            "spacing {dl}/{dr}: reaction error {:.3} %",
+            100.0 * reaction
+        );
+    }
+}
+
+/// The paper's Case I vs Case II: the constant-horizon baseline (every point
+/// takes the largest horizon) is less accurate than DH-PD in both orders.
+#[test]
+fn bar_1d_dual_horizon_beats_constant_horizon_baseline() {
+    for (dl, dr) in [(0.01, 0.005), (0.005, 0.01)] {
+        let (dual, _) = bar_errors(&Bimaterial {
+            dx_left: dl,
+            dx_right: dr,
+            constant_horizon: false,
+            strip: false,
+        });
+        let (constant, _) = bar_errors(&Bimaterial {
+            dx_left: dl,
+            dx_right: dr,
+            constant_horizon: true,
+            strip: false,
+        });
+        assert!(
+            dual.rms_relative < constant.rms_relative,
+            "spacing {dl}/{dr}: DH {:?} vs constant {:?}",
+            dual,
+            constant
+        );
+    }
+}
+
+fn strip(refinement: f64) -> (ErrorStats, f64) {
+    let reference = FemReference::from_json(BIMATERIAL_STRIP_FEM).unwrap();
+    let case = Bimaterial {
+        dx_left: 0.01 / refinement,
+        dx_right: 0.005 / refinement,
+        constant_horizon: false,
+        strip: true,
+    };
+    let s = case.solve().expect("strip solves");
+    let centre: Vec<(f64, f64)> = (0..s.disc.points.len())
+        .filter(|&i| s.dofs.free_count(i) == 2)
+        .filter(|&i| (s.disc.points.x[i][1] - 0.05).abs() <= 0.5 * s.disc.points.spacing[i] + 1e-12)
+        .filter_map(|i| {
+            reference
+                .grid
+                .interpolate("ux", s.disc.points.x[i][0], s.disc.points.x[i][1])
+                .map(|r| (s.u[i][0], r))
+        })
+        .collect();
+    let reaction = s
+        .reactions
+        .iter()
+        .find(|r| r.name == "right")
+        .unwrap()
+        .force[0];
+    (
+        ErrorStats::of(centre, BAR_DISPLACEMENT),
+        reaction / reference.reaction_x.unwrap() - 1.0,
+    )
+}
+
+/// Issue target: u_x along the centre line within 2 % of the FEM reference at the
+/// paper's spacing (0.01 / 0.005 m).
+#[test]
+fn strip_2d_centre_line_matches_fem() {
+    let (stats, _) = strip(1.0);
+    assert!(stats.count > 100);
+    assert!(
+        stats.max_relative < 0.02,
+        "centre line max error {:.3} %",
+        100.0 * stats.max_relative
+    );
+}
+
+/// The reaction differs from FEM by the surface softening of PD (points within δ
+/// of the free edges miss bonds; at 0.01 m spacing δ/H = 0.3 on the left half,
+/// which costs 4.6 %) plus the interior quadrature bias of the overlap rule
+/// (+0.95 % at δ = 3.015Δ, computed from the bond sum; see
+/// `discretization::partial_volume`). Three times finer (δ/H = 0.1) the sum must
+/// be within the issue's 2 %, and the centre-line error must shrink with refinement.
+#[test]
+fn strip_2d_reaction_converges_to_fem() {
+    let (coarse, _) = strip(1.0);
+    let (fine, reaction) = strip(3.0);
+    assert!(
+        reaction.abs() < 0.02,
+        "reaction error {:.3} % at 3x refinement",
+        100.0 * reaction
+    );
+    assert!(fine.max_relative < coarse.max_relative);
+}
