@@ -2,8 +2,9 @@
 """FEM reference (scikit-fem, P2 triangles) for the 2D bimaterial strip.
 
 Problem (linear elasticity, plane stress, thickness 1 m, SI units):
-  domain    x in [a, b], y in [0, H], a = 0.03, b = 0.97, H = 0.1
-            (the PD body [0,1]x[0,0.1] minus its rigid constrained layers)
+  domain    x in [a, b], y in [0, H], a = 0.025, b = 0.9725, H = 0.1
+            (the PD body [0,1]x[0,0.1] minus its rigid constrained layers;
+            a and b are the centres of the innermost constrained PD points)
   material  E1 = 1 for x < 0.5, E2 = 2 for x > 0.5, nu = 1/3 in both;
             every element takes E from its centroid, the mesh has a node
             line (element edges) on the interface x = 0.5
@@ -23,7 +24,7 @@ mean of the left and right one-sided limits.  Points on the outer boundary
 are nudged inward by 1e-12*(b-a) so the element finder always succeeds.
 solve_time_s is the wall time of assembly + direct solve (scipy SuperLU).
 
-Usage:  python fem_bimaterial_strip.py [--a 0.03] [--b 0.97] [--out reference.json]
+Usage:  python fem_bimaterial_strip.py [--a 0.025] [--b 0.9725] [--out reference.json]
 """
 import argparse
 import json
@@ -128,8 +129,8 @@ def r12(v):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--a", type=float, default=0.03)
-    ap.add_argument("--b", type=float, default=0.97)
+    ap.add_argument("--a", type=float, default=0.025)
+    ap.add_argument("--b", type=float, default=0.9725)
     ap.add_argument("--out", default=os.path.join(os.path.dirname(
         os.path.abspath(__file__)), "reference.json"))
     args = ap.parse_args()
