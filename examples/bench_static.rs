@@ -100,6 +100,14 @@ fn main() {
         times[3].push(t.elapsed().as_secs_f64());
         let t = Instant::now();
         let mut chol = Cholesky::analyse(k.view(&pattern)).unwrap();
+        eprintln!(
+            "  (factor needs {:.2} GiB)",
+            chol.factor_bytes() as f64 / 1073741824.0
+        );
+        if let Err(e) = dhpd::solve::check_memory(chol.factor_bytes()) {
+            println!("{dim} n={n}: {e}");
+            return;
+        }
         times[4].push(t.elapsed().as_secs_f64());
         let t = Instant::now();
         chol.factorize(k.view(&pattern)).unwrap();

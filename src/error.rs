@@ -45,6 +45,18 @@ pub enum NumericalError {
         component: usize,
         position: [f64; 3],
     },
+    /// The Cholesky factorisation left almost nothing of an unknown's stiffness.
+    #[error(
+        "the stiffness matrix is singular to round-off at point {point} (x = {position:?}), \
+         component {component} (pivot ratio {ratio:.1e}): that point can move without resistance \
+         (a mechanism: too few bonds, or bonds all along one line)"
+    )]
+    NearlySingular {
+        point: usize,
+        component: usize,
+        position: [f64; 3],
+        ratio: f64,
+    },
     /// The LU factorisation found a structurally singular matrix.
     #[error(
         "the stiffness matrix is structurally singular at point {point}, component {component}"
@@ -60,6 +72,17 @@ pub enum NumericalError {
         first: usize,
         position: [f64; 3],
     },
+    /// Prescribed displacements leave a rigid motion of a body free.
+    #[error(
+        "the body of {points} point(s) containing point {first} (x = {position:?}) is not held: \
+         it can move freely by {motions}; prescribe displacements that stop this motion"
+    )]
+    RigidMotion {
+        points: usize,
+        first: usize,
+        position: [f64; 3],
+        motions: String,
+    },
     /// The solution failed its residual check.
     #[error("solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e}")]
     ResidualTooLarge { residual: f64, threshold: f64 },
@@ -69,6 +92,17 @@ pub enum NumericalError {
     /// The linear system has no free degree of freedom.
     #[error("every degree of freedom is prescribed: nothing to solve")]
     NothingToSolve,
+    /// The factorisation would not fit in memory (known after the symbolic analysis).
+    #[error(
+        "the sparse factor would need {:.2} GiB but only {:.2} GiB are available; use a coarser \
+         spacing or a smaller horizon factor",
+        *needed_bytes as f64 / 1073741824.0,
+        *available_bytes as f64 / 1073741824.0
+    )]
+    TooLarge {
+        needed_bytes: usize,
+        available_bytes: usize,
+    },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
     Solver(String),

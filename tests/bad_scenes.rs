@@ -1,12 +1,11 @@
 //! Bad scenes through the real binary: every case must fail with the right exit
 //! code (2 input error, 3 numerical failure, 4 I/O), name the offending field
 //! (dotted path or key) on stderr, and leave neither the `--out` directory nor a
-//! `.out.partial-*` sibling behind.
+//! `.out.partial-*` sibling (nor any other file) behind.
 //!
 //! Each case is a small edit of [`BASE`] (a 0.2 m × 0.1 m plane-stress plate,
 //! spacing 0.01 m, left edge clamped, right edge pulled by a traction), run in
-//! its own temporary directory. [`KNOWN_GAPS`] lists cases whose current
-//! behaviour falls short of the contract; they are run and reported, not asserted.
+//! its own temporary directory.
 //!
 //! Set `DHPD_BAD_SCENES_SHOW=1` to print the stderr of every case.
 
@@ -74,6 +73,12 @@ displacement = { x = 0.0 }
 /// A point file `pts.xyz` next to the scene, default material `soft`.
 const PF: &str = "\n[[point_files]]\npath = \"pts.xyz\"\nmaterial = \"soft\"\n";
 
+/// The clamp of the base scene (removed by the under-constrained cases).
+const LEFT_BC: &str = "[[boundary]]\nname = \"left\"\nbox = { min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement = { x = 0.0, y = 0.0 }\n";
+
+/// A traction on the left face balancing the base scene's pull.
+const LEFT_PULL: &str = "\n[[loads]]\nname = \"pull_left\"\nkind = \"traction\"\nface = \"-x\"\nbox = { min = [0.0, 0.0], max = [0.01, 0.1] }\nvalue = [-1.0e6, 0.0]\n";
+
 /// Two valid rows (x y volume) to the right of the plate, touching nothing else.
 const ROWS_OK: &str = "0.30 0.05 1e-6\n0.31 0.05 1e-6\n";
 
@@ -90,6 +95,10 @@ enum Edit {
     Whole(&'static str),
     /// Write the scene as `scene.json` instead of `scene.toml` (use with `Whole`).
     Json,
+    /// Run `dhpd check SCENE` instead of `dhpd run SCENE --out DIR`.
+    Check,
+    /// Run `dhpd run SCENE` without `--out` (results would go to `dhpd-out/<name>`).
+    NoOut,
 }
 use Edit::*;
 
@@ -140,7 +149,7 @@ const CASES: &[Case] = &[
     c("unknown_volume_correction", &[Rep("horizon_factor = 3.015", "volume_correction = \"exact\"")], None, 2, &["discretization.volume_correction", "exact"]),
     c("json_unknown_key", &[Json, Whole(r#"{"model": {"dimension": "1d"}, "materials": {"bar": {"youngs_modulus": 1.0}},
         "regions": [{"material": "bar", "spacin": 0.01, "box": {"min": [0.0], "max": [0.1]}}]}"#)], None, 2, &["regions[0]", "spacin"]),
-    c("json_syntax_error", &[Json, Whole(r#"{"model": {"dimension": "1d"},}"#)], None, 2, &["scene", "JSON"]),
+    c("json_syntax_error", &[Json, Whole(r#"{"model": {"dimension": "1d"},}"#)], None, 2, &["trailing comma", "line 1 column 31", "JSON"]),
     // --- model ---
     c("thickness_in_3d", &[Rep("\"plane_stress\"", "\"3d\"")], None, 2, &["model.thickness"]),
     c("area_in_2d", &[Rep("thickness = 0.01", "area = 0.01")], None, 2, &["model.area"]),
@@ -216,20 +225,40 @@ const CASES: &[Case] = &[
     c("point_file_only_comments", &[Add(PF)], Some("# x y volume\n\n"), 2, &["point_files[0].path"]),
     c("point_file_empty_path", &[Add("\n[[point_files]]\npath = \" \"\nmaterial = \"soft\"\n")], None, 2, &["point_files[0].path"]),
     c("point_file_horizon_factor_0_5", &[Add("\n[[point_files]]\npath = \"pts.xyz\"\nmaterial = \"soft\"\nhorizon_factor = 0.5\n")], Some(ROWS_OK), 2, &["point_files[0].horizon_factor"]),
-    c("point_file_duplicate_points", &[Add(PF)], Some("0.30 0.05 1e-6\n0.30 0.05 1e-6\n"), 2, &["points", "coincide"]),
+    c("point_file_duplicate_points", &[Add(PF)], Some("0.30 0.05 1e-6\n0.30 0.05 1e-6\n"), 2, &["point_files[0]", "duplicates"]),
     c("point_file_missing", &[Add("\n[[point_files]]\npath = \"missing.xyz\"\nmaterial = \"soft\"\n")], None, 4, &["missing.xyz"]),
     // --- numerical failures (exit 3) ---
-    c("no_boundary_condition", &[Rep("[[boundary]]\nname = \"left\"\nbox = { min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement = { x = 0.0, y = 0.0 }\n", "")], None, 3, &["not positive definite", "point"]),
-    c("no_boundary_condition_lu", &[Rep("[[boundary]]\nname = \"left\"\nbox = { min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement = { x = 0.0, y = 0.0 }\n", ""), Add("\n[solver]\nmethod = \"lu\"\n")], None, 3, &["numerical failure"]),
-    c("only_x_held_rigid_y_translation", &[Rep("{ x = 0.0, y = 0.0 }", "{ x = 0.0 }")], None, 3, &["not positive definite", "point"]),
+    // Rigid motions are found from the constrained components before factorising.
+    c("no_boundary_condition", &[Rep(LEFT_BC, "")], None, 3, &["is not held", "rotation about z"]),
+    c("no_boundary_condition_lu", &[Rep(LEFT_BC, ""), Add("\n[solver]\nmethod = \"lu\"\n")], None, 3, &["is not held"]),
+    c("only_x_held_y_load_rigid_y_translation", &[Rep("{ x = 0.0, y = 0.0 }", "{ x = 0.0 }"), Rep("value = [1.0e6, 0.0]", "value = [1.0e6, 1.0e3]")], None, 3, &["translation along (0.000, 1.000)"]),
+    c("every_dof_prescribed", &[Rep("min = [0.0, 0.0], max = [0.01, 0.1]", "min = [0.0, 0.0], max = [0.2, 0.1]")], None, 3, &["every degree of freedom is prescribed"]),
     c("isolated_point_default_policy", &[Add(PF)], Some("1.0 1.0 1e-6\n"), 3, &["discretization.isolated_points", "point"]),
+    // --- `dhpd check` (validation only) rejects what it can see ---
+    c("check_zero_youngs_modulus", &[Check, Rep("youngs_modulus = 1.0e9", "youngs_modulus = 0.0")], None, 2, &["materials.soft.youngs_modulus"]),
+    c("check_unknown_key", &[Check, Rep("spacing = 0.01", "spacin = 0.01")], None, 2, &["regions[0].spacin"]),
+    c("check_point_file_nan", &[Check, Add(PF)], Some("0.30 0.05 1e-6\n0.31 nan 1e-6\n"), 2, &["point_files[0]", "line 2"]),
+    c("check_point_file_missing", &[Check, Add("\n[[point_files]]\npath = \"missing.xyz\"\nmaterial = \"soft\"\n")], None, 4, &["missing.xyz"]),
+    c("check_empty_scene", &[Check, Whole("")], None, 2, &["scene", "model"]),
+    // Formerly known gaps, fixed: rigid motions named before factorising, JSON root field,
+    // zero-extent boxes, a cap on the point count, `check` runs every pre-numerics check,
+    // scene names safe as directory names, duplicates named by file and line.
+    c("json_syntax_error_field", &[Json, Whole(r#"{"model": {"dimension": "1d"},}"#)], None, 2, &["scene:"]),
+    c("only_x_held_rigid_y_translation", &[Rep("{ x = 0.0, y = 0.0 }", "{ x = 0.0 }")], None, 3, &["is not held", "translation along (0.000, 1.000)"]),
+    c("no_boundary_condition_e_1", &[Rep(LEFT_BC, ""), Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0")], None, 3, &["is not held"]),
+    c("no_boundary_condition_balanced_loads", &[Rep(LEFT_BC, ""), Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0"), Add(LEFT_PULL)], None, 3, &["is not held"]),
+    c("no_boundary_condition_lu_message", &[Rep(LEFT_BC, ""), Add("\n[solver]\nmethod = \"lu\"\n")], None, 3, &["is not held", "point 0"]),
+    c("point_file_duplicate_points_field", &[Add(PF)], Some("0.30 0.05 1e-6\n0.30 0.05 1e-6\n"), 2, &["point_files[0]", "line 2"]),
+    c("region_zero_extent_box", &[Rep("min = [0.0, 0.0], max = [0.2, 0.1]", "min = [0.0, 0.0], max = [0.2, 0.0]")], None, 2, &["regions[0].box"]),
+    c("region_spacing_too_fine", &[Rep("spacing = 0.01", "spacing = 1e-9")], None, 2, &["regions[0].spacing"]),
+    c("check_boundary_box_selects_no_point", &[Check, Rep("min = [0.0, 0.0], max = [0.01, 0.1]", "min = [0.5, 0.5], max = [0.6, 0.6]")], None, 2, &["boundary[0].box"]),
+    c("check_boundary_conflicting_values", &[Check, Add("\n[[boundary]]\nname = \"left2\"\nbox = { min = [0.0, 0.0], max = [0.02, 0.1] }\ndisplacement = { x = 1e-3 }\n")], None, 2, &["boundary[1].displacement"]),
+    c("check_load_box_selects_no_point", &[Check, Rep("min = [0.19, 0.0], max = [0.2, 0.1]", "min = [0.5, 0.5], max = [0.6, 0.6]")], None, 2, &["loads[0].box"]),
+    c("check_profile_selects_no_point", &[Check, Rep("from = [0.0, 0.05]\nto = [0.2, 0.05]", "from = [0.5, 0.5]\nto = [0.6, 0.5]")], None, 2, &["output.profiles[0]"]),
+    c("check_point_file_duplicate_points", &[Check, Add(PF)], Some("0.30 0.05 1e-6\n0.30 0.05 1e-6\n"), 2, &["point_files[0]", "line 2"]),
+    c("name_empty_default_out", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"\"")], None, 2, &["name"]),
+    c("name_parent_dir_default_out", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"../escaped\"")], None, 2, &["name"]),
 ];
-
-/// Cases whose current behaviour does not meet the contract (wrong exit code,
-/// exit 0, panic, or a message that does not name the field). Run and reported
-/// by `known_gaps_report`, never asserted; move a case to [`CASES`] once fixed.
-#[rustfmt::skip]
-const KNOWN_GAPS: &[Case] = &[];
 
 /// A per-case temporary directory, removed on drop.
 struct TempDir(PathBuf);
@@ -250,17 +279,15 @@ impl Drop for TempDir {
     }
 }
 
-/// What one run produced.
-struct Outcome {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-    /// The `--out` directory exists afterwards.
-    out_exists: bool,
-    /// Names of leftover `.out.partial-*` siblings.
-    partials: Vec<String>,
+/// How to invoke the binary.
+#[derive(Clone, Copy, PartialEq)]
+enum Mode {
+    Run,
+    RunNoOut,
+    Check,
 }
 
+/// Applies `edits` to [`BASE`]; returns the text and whether it is JSON.
 fn scene_text(edits: &[Edit], case: &str) -> (String, bool) {
     let mut text = BASE.to_string();
     let mut json = false;
@@ -278,45 +305,72 @@ fn scene_text(edits: &[Edit], case: &str) -> (String, bool) {
             Pre(t) => text.insert_str(0, t),
             Whole(t) => text = t.to_string(),
             Json => json = true,
+            Check | NoOut => {}
         }
     }
     (text, json)
 }
 
-fn run_scene(dir: &Path, text: &str, json: bool, points: Option<&str>) -> Outcome {
+/// Files the harness writes into a case directory; anything else is output.
+const INPUTS: &[&str] = &["scene.toml", "scene.json", "pts.xyz"];
+
+/// What one run produced.
+struct Outcome {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+    /// The `--out` directory exists afterwards.
+    out_exists: bool,
+    /// Leftover `.out.partial-*` siblings.
+    partials: Vec<String>,
+    /// Any other entry the run created in the case directory (its working directory).
+    strays: Vec<String>,
+}
+
+fn run_scene(dir: &Path, text: &str, json: bool, points: Option<&str>, mode: Mode) -> Outcome {
     let scene = dir.join(if json { "scene.json" } else { "scene.toml" });
     std::fs::write(&scene, text).expect("write the scene");
     if let Some(p) = points {
         std::fs::write(dir.join("pts.xyz"), p).expect("write the point file");
     }
     let out = dir.join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
-        .arg("run")
-        .arg(&scene)
-        .arg("--out")
-        .arg(&out)
-        .current_dir(dir)
-        .output()
-        .expect("start dhpd");
-    let partials = std::fs::read_dir(dir)
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_dhpd"));
+    match mode {
+        Mode::Run => cmd.arg("run").arg(&scene).arg("--out").arg(&out),
+        Mode::RunNoOut => cmd.arg("run").arg(&scene),
+        Mode::Check => cmd.arg("check").arg(&scene),
+    };
+    let o = cmd.current_dir(dir).output().expect("start dhpd");
+    let entries: Vec<String> = std::fs::read_dir(dir)
         .expect("list the case directory")
         .filter_map(|e| e.ok())
         .map(|e| e.file_name().to_string_lossy().into_owned())
-        .filter(|n| n.starts_with('.') && n.contains(".partial-"))
+        .filter(|n| !INPUTS.contains(&n.as_str()))
         .collect();
+    let (partials, rest): (Vec<String>, Vec<String>) = entries
+        .into_iter()
+        .partition(|n| n.starts_with('.') && n.contains(".partial-"));
     Outcome {
         code: o.status.code(),
         stdout: String::from_utf8_lossy(&o.stdout).into_owned(),
         stderr: String::from_utf8_lossy(&o.stderr).into_owned(),
         out_exists: out.exists(),
         partials,
+        strays: rest.into_iter().filter(|n| n != "out").collect(),
     }
 }
 
 fn run_case(case: &Case) -> Outcome {
     let dir = TempDir::new(case.name);
     let (text, json) = scene_text(case.edits, case.name);
-    run_scene(&dir.0, &text, json, case.points)
+    let mode = if case.edits.iter().any(|e| matches!(e, Check)) {
+        Mode::Check
+    } else if case.edits.iter().any(|e| matches!(e, NoOut)) {
+        Mode::RunNoOut
+    } else {
+        Mode::Run
+    };
+    run_scene(&dir.0, &text, json, case.points, mode)
 }
 
 /// Everything wrong with an outcome, empty when the case behaves as required.
@@ -338,6 +392,9 @@ fn problems(case: &Case, o: &Outcome) -> Vec<String> {
     }
     if !o.partials.is_empty() {
         p.push(format!("partial output left behind: {:?}", o.partials));
+    }
+    if !o.strays.is_empty() {
+        p.push(format!("output written next to the scene: {:?}", o.strays));
     }
     p
 }
@@ -388,7 +445,7 @@ fn bad_scenes_fail_cleanly_and_name_the_field() {
 #[test]
 fn base_scene_runs() {
     let dir = TempDir::new("base");
-    let o = run_scene(&dir.0, BASE, false, None);
+    let o = run_scene(&dir.0, BASE, false, None, Mode::Run);
     assert_eq!(
         o.code,
         Some(0),
@@ -409,6 +466,11 @@ fn base_scene_runs() {
         "partial output left behind: {:?}",
         o.partials
     );
+    assert!(
+        o.strays.is_empty(),
+        "output written next to the scene: {:?}",
+        o.strays
+    );
 }
 
 /// The point-file and 1D fixtures are themselves valid, so the cases built on them
@@ -417,7 +479,7 @@ fn base_scene_runs() {
 fn fixtures_are_valid() {
     let dir = TempDir::new("fixture-pf");
     let (text, _) = scene_text(&[Add(PF)], "fixture-pf");
-    let o = run_scene(&dir.0, &text, false, Some(ROWS_OK));
+    let o = run_scene(&dir.0, &text, false, Some(ROWS_OK), Mode::Run);
     // The two rows sit apart from the plate, bonded only to each other: a free
     // body, so the run may fail numerically, but never on input.
     assert_ne!(o.code, Some(2), "stderr: {}", o.stderr);
@@ -426,7 +488,7 @@ fn fixtures_are_valid() {
         &[Whole(BAR_1D), Rep("poisson_ratio = 0.25\n", "")],
         "fixture-1d",
     );
-    let o = run_scene(&dir.0, &text, false, None);
+    let o = run_scene(&dir.0, &text, false, None, Mode::Run);
     assert_eq!(o.code, Some(0), "stderr: {}", o.stderr);
 }
 
@@ -457,24 +519,55 @@ fn failed_run_keeps_previous_output() {
     );
 }
 
-/// Runs the known gaps and prints how each currently behaves; asserts nothing.
+/// `--out` must never replace a directory that is not a dhpd result: not the
+/// working directory (`.`), not its parent, not a non-empty foreign directory.
+/// A previous result (holding `summary.json`) is replaced only by a successful run.
 #[test]
-fn known_gaps_report() {
-    for case in KNOWN_GAPS {
-        let o = run_case(case);
-        let p = problems(case, &o);
-        if p.is_empty() {
-            eprintln!(
-                "known gap {} now behaves as required: move it to CASES",
-                case.name
-            );
-        } else {
-            eprintln!(
-                "known gap {}: {}\n    stderr: {}",
-                case.name,
-                p.join("; "),
-                o.stderr.trim_end()
-            );
-        }
+fn output_directory_is_never_clobbered() {
+    let dir = TempDir::new("clobber");
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, BASE).unwrap();
+    let foreign = dir.0.join("foreign");
+    std::fs::create_dir_all(&foreign).unwrap();
+    std::fs::write(foreign.join("thesis.tex"), "precious").unwrap();
+    for target in [Path::new("."), Path::new(".."), foreign.as_path()] {
+        let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+            .arg("run")
+            .arg(&scene)
+            .arg("--out")
+            .arg(target)
+            .current_dir(&dir.0)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(
+            o.status.code(),
+            Some(2),
+            "--out {}: {stderr}",
+            target.display()
+        );
+        assert!(
+            stderr.contains("--out"),
+            "--out {}: {stderr}",
+            target.display()
+        );
+        assert!(scene.exists() && foreign.join("thesis.tex").exists());
+    }
+    let result = dir.0.join("result");
+    for _ in 0..2 {
+        let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+            .arg("run")
+            .arg(&scene)
+            .arg("--out")
+            .arg(&result)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        assert!(result.join("summary.json").is_file());
     }
 }

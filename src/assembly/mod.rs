@@ -11,6 +11,7 @@ pub mod dofs;
 pub mod forces;
 pub mod loads;
 pub mod pattern;
+pub mod rigid_modes;
 pub mod stiffness;
 
 /// Splits `data` into consecutive mutable chunks at `offsets` (length n + 1, starting at 0).

@@ -59,11 +59,14 @@ fn main() {
 
 fn check(path: &Path) -> Result<(), Error> {
     let scene = scene::load(path)?;
-    let raw = dhpd::discretization::generate_points(&scene)?;
+    let prepared = static_solve::prepare(&scene)?;
+    Plan::new(&scene, &prepared.disc)?;
     println!(
-        "{}: valid ({} points before neighbour search)",
+        "{}: valid ({} points, {} bonds, {} free dofs)",
         path.display(),
-        raw.len()
+        prepared.disc.points.len(),
+        prepared.disc.bonds.len(),
+        prepared.dofs.n_free()
     );
     Ok(())
 }
@@ -73,6 +76,7 @@ fn run(scene: &Scene, out: Option<&Path>) -> Result<static_solve::StaticSolution
     let dir = out
         .map(Path::to_path_buf)
         .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name));
+    output::check_output_dir(&dir)?;
     let prepared = static_solve::prepare(scene)?;
     let plan = Plan::new(scene, &prepared.disc)?;
     let solution = prepared.solve(scene)?;

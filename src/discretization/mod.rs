@@ -125,14 +125,15 @@ pub fn build(scene: &Scene) -> Result<Discretization, Error> {
 pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
     let d = scene.d();
     let mut raw: Vec<RawPoint> = Vec::new();
-    for region in &scene.regions {
-        raw.extend(grid::fill(region, d, scene.thickness));
+    for (k, region) in scene.regions.iter().enumerate() {
+        raw.extend(grid::fill(region, k, d, scene.thickness));
     }
-    for file in &scene.point_files {
+    for (k, file) in scene.point_files.iter().enumerate() {
         let text = std::fs::read_to_string(&file.path).map_err(|e| Error::io(&file.path, e))?;
         raw.extend(point_file::parse(
             &text,
             file,
+            k,
             d,
             scene.thickness,
             &scene.materials,
@@ -147,11 +148,31 @@ pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
     if raw.is_empty() {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
+    reject_duplicates(&raw)?;
     if scene.horizons == HorizonMode::Constant {
         let largest = raw.iter().map(|p| p.horizon).fold(0.0, f64::max);
         raw.iter_mut().for_each(|p| p.horizon = largest);
     }
     Ok(raw)
+}
+
+/// Rejects points at identical positions, naming where both come from.
+fn reject_duplicates(raw: &[RawPoint]) -> Result<(), InputError> {
+    let mut order: Vec<usize> = (0..raw.len()).collect();
+    order.sort_unstable_by_key(|&i| raw[i].x.map(f64::to_bits));
+    for w in order.windows(2) {
+        if raw[w[0]].x == raw[w[1]].x {
+            let (a, b) = (w[0].min(w[1]), w[0].max(w[1]));
+            return Err(InputError::new(
+                raw[b].source.to_string(),
+                format!(
+                    "a point at {:?} duplicates one from {}; each position may hold one point",
+                    raw[b].x, raw[a].source
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Builds bonds for given points, applying the isolated-point policy.

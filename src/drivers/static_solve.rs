@@ -6,13 +6,14 @@ use crate::assembly::dofs::DofMap;
 use crate::assembly::forces::internal_forces;
 use crate::assembly::loads::{external_forces, AppliedLoad};
 use crate::assembly::pattern::Pattern;
+use crate::assembly::rigid_modes;
 use crate::assembly::stiffness::Stiffness;
 use crate::discretization::{self, Discretization};
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::Model;
 use crate::scene::{ModelKind, Scene, SolverMethod};
-use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, SparseLu};
+use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -53,6 +54,8 @@ pub struct Counts {
     pub nnz_k: usize,
     /// Stored entries of the Cholesky factor (None for LU).
     pub nnz_l: Option<usize>,
+    /// Pivot range of the Cholesky factor (None for LU).
+    pub pivots: Option<PivotStats>,
     /// Isolated points removed.
     pub removed_points: usize,
 }
@@ -105,11 +108,19 @@ pub struct StaticSolution {
 pub struct Prepared {
     /// Points and bonds.
     pub disc: Discretization,
+    /// Degrees of freedom and constrained sets.
+    pub dofs: DofMap,
+    /// External force on every point.
+    pub f_ext: Vec<[f64; 3]>,
+    /// Applied loads.
+    pub loads: Vec<AppliedLoad>,
     /// Time spent so far.
     pub timings: Timings,
 }
 
-/// Discretises `scene` (points, then bonds).
+/// Discretises `scene` (points, then bonds), selects the constrained and loaded
+/// points, and checks that no rigid motion is left free: every check that does
+/// not need the stiffness matrix.
 pub fn prepare(scene: &Scene) -> Result<Prepared, Error> {
     let mut timings = Timings::default();
     let t = Instant::now();
@@ -118,7 +129,19 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, Error> {
     let t = Instant::now();
     let disc = discretization::discretize(scene, raw)?;
     timings.neighbour_search = t.elapsed().as_secs_f64();
-    Ok(Prepared { disc, timings })
+    let dofs = DofMap::new(&disc.points, disc.d, &scene.boundaries)?;
+    let (f_ext, loads) = external_forces(&disc.points, disc.d, &scene.loads)?;
+    if dofs.n_free() == 0 {
+        return Err(NumericalError::NothingToSolve.into());
+    }
+    rigid_modes::check(&disc, &dofs)?;
+    Ok(Prepared {
+        disc,
+        dofs,
+        f_ext,
+        loads,
+        timings,
+    })
 }
 
 impl Prepared {
@@ -132,7 +155,7 @@ impl Prepared {
                     &scene.materials,
                     scene.thickness,
                 );
-                solve_with(&model, scene, self.disc, self.timings)
+                solve_with(&model, scene, self)
             }
         }
     }
@@ -147,15 +170,16 @@ pub fn solve(scene: &Scene) -> Result<StaticSolution, Error> {
 pub fn solve_with<M: Model>(
     model: &M,
     scene: &Scene,
-    disc: Discretization,
-    mut timings: Timings,
+    prepared: Prepared,
 ) -> Result<StaticSolution, Error> {
+    let Prepared {
+        disc,
+        dofs,
+        f_ext,
+        loads,
+        mut timings,
+    } = prepared;
     let d = disc.d;
-    let dofs = DofMap::new(&disc.points, d, &scene.boundaries)?;
-    let (f_ext, loads) = external_forces(&disc.points, d, &scene.loads)?;
-    if dofs.n_free() == 0 {
-        return Err(NumericalError::NothingToSolve.into());
-    }
 
     let t = Instant::now();
     let pattern = Pattern::new(&disc, &dofs, model.coupling());
@@ -174,7 +198,11 @@ pub fn solve_with<M: Model>(
     let t = Instant::now();
     let matrix = stiffness.view(&pattern);
     let mut solver = match scene.solver {
-        SolverMethod::Cholesky => LinearSolver::Cholesky(Cholesky::analyse(matrix)?),
+        SolverMethod::Cholesky => {
+            let chol = Cholesky::analyse(matrix)?;
+            crate::solve::check_memory(chol.factor_bytes())?;
+            LinearSolver::Cholesky(chol)
+        }
         SolverMethod::Lu => LinearSolver::Lu(SparseLu::analyse(matrix)?),
     };
     timings.symbolic_factorization = t.elapsed().as_secs_f64();
@@ -230,6 +258,7 @@ pub fn solve_with<M: Model>(
         prescribed_dofs: disc.points.len() * d - dofs.n_free(),
         nnz_k: pattern.nnz(),
         nnz_l: solver.nnz_factor(),
+        pivots: solver.pivot_stats(),
         removed_points: disc.removed_isolated,
     };
     Ok(StaticSolution {
@@ -267,6 +296,16 @@ fn factor_error(e: FactorError, dofs: &DofMap, disc: &Discretization) -> Error {
         FactorError::Singular(k) => {
             let (point, component) = locate(k);
             NumericalError::StructurallySingular { point, component }.into()
+        }
+        FactorError::NearlySingular(k, ratio) => {
+            let (point, component) = locate(k);
+            NumericalError::NearlySingular {
+                point,
+                component,
+                position: disc.points.x[point],
+                ratio,
+            }
+            .into()
         }
         FactorError::Generic => {
             NumericalError::Solver("factorisation failed (out of memory?)".into()).into()

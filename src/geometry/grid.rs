@@ -15,11 +15,32 @@ pub struct RawPoint {
     pub horizon: f64,
     /// Material index.
     pub material: u32,
+    /// Where the point comes from, for error messages.
+    pub source: Source,
+}
+
+/// The scene item that produced a point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    /// `regions[k]`.
+    Region(u32),
+    /// `point_files[k]`, 1-based line.
+    File { file: u32, line: u32 },
+}
+
+impl std::fmt::Display for Source {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Source::Region(k) => write!(f, "regions[{k}]"),
+            Source::File { file, line } => write!(f, "point_files[{file}] (line {line})"),
+        }
+    }
 }
 
 /// Fills `region` with points at cell centres; `d` is the dimension and
 /// `thickness` the 2D thickness or 1D area.
-pub fn fill(region: &Region, d: usize, thickness: f64) -> Vec<RawPoint> {
+/// `index` is the region's position in the scene.
+pub fn fill(region: &Region, index: usize, d: usize, thickness: f64) -> Vec<RawPoint> {
     let h = region.spacing;
     let mut counts = [1usize; 3];
     for (a, count) in counts.iter_mut().enumerate().take(d) {
@@ -44,6 +65,7 @@ pub fn fill(region: &Region, d: usize, thickness: f64) -> Vec<RawPoint> {
                     spacing: h,
                     horizon,
                     material: region.material as u32,
+                    source: Source::Region(index as u32),
                 });
             }
         }

@@ -12,7 +12,7 @@
 //! (2D) or the area (1D). Without a horizon column a point's horizon is
 //! `horizon_factor × (volume / thickness)^(1/d)`.
 
-use super::grid::RawPoint;
+use super::grid::{RawPoint, Source};
 use crate::error::InputError;
 use crate::scene::{Material, PointFile};
 
@@ -20,6 +20,7 @@ use crate::scene::{Material, PointFile};
 pub fn parse(
     text: &str,
     file: &PointFile,
+    index: usize,
     d: usize,
     thickness: f64,
     materials: &[Material],
@@ -106,6 +107,10 @@ pub fn parse(
             spacing,
             horizon,
             material: material as u32,
+            source: Source::File {
+                file: index as u32,
+                line: n as u32 + 1,
+            },
         });
     }
     if points.is_empty() {

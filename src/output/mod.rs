@@ -106,18 +106,78 @@ pub fn write_static(
         let _ = std::fs::remove_dir_all(&tmp);
         return Err(e);
     }
-    if dir.exists() {
-        std::fs::remove_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    check_output_dir(dir)?;
+    let old = dir.with_file_name(format!(".{}.old-{}", file_name(dir), std::process::id()));
+    let replacing = dir.exists();
+    if replacing {
+        std::fs::rename(dir, &old).map_err(|e| Error::io(dir, e))?;
     }
-    std::fs::rename(&tmp, dir).map_err(|e| Error::io(dir, e))
+    if let Err(e) = std::fs::rename(&tmp, dir) {
+        if replacing {
+            let _ = std::fs::rename(&old, dir);
+        }
+        let _ = std::fs::remove_dir_all(&tmp);
+        return Err(Error::io(dir, e));
+    }
+    if replacing {
+        let _ = std::fs::remove_dir_all(&old);
+    }
+    Ok(())
+}
+
+/// Checks that `dir` may receive results: it must not exist, or be an empty
+/// directory, or hold a previous dhpd result (`summary.json`); it may not be the
+/// working directory or one of its ancestors. Call it before solving.
+pub fn check_output_dir(dir: &Path) -> Result<(), InputError> {
+    let refuse = |why: String| {
+        InputError::new(
+            "--out",
+            format!("refusing to write results to {}: {why}", dir.display()),
+        )
+    };
+    match dir.file_name().and_then(|n| n.to_str()) {
+        Some(n) if n != "." && n != ".." => {}
+        _ => {
+            return Err(refuse(
+                "give a directory name (not '.', '..' or a root)".into(),
+            ))
+        }
+    }
+    if !dir.exists() {
+        return Ok(());
+    }
+    if !dir.is_dir() {
+        return Err(refuse("it exists and is not a directory".into()));
+    }
+    if let (Ok(target), Ok(cwd)) = (
+        dir.canonicalize(),
+        std::env::current_dir().and_then(|c| c.canonicalize()),
+    ) {
+        if cwd.starts_with(&target) {
+            return Err(refuse("it is the working directory or contains it".into()));
+        }
+    }
+    let empty = std::fs::read_dir(dir)
+        .map(|mut entries| entries.next().is_none())
+        .unwrap_or(false);
+    if !empty && !dir.join("summary.json").is_file() {
+        return Err(refuse("it exists, is not empty and holds no dhpd result (summary.json); it is replaced only then".into()));
+    }
+    Ok(())
+}
+
+fn file_name(dir: &Path) -> String {
+    dir.file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into())
 }
 
 fn temporary_sibling(dir: &Path) -> PathBuf {
-    let name = dir
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into());
-    dir.with_file_name(format!(".{name}.partial-{}", std::process::id()))
+    dir.with_file_name(format!(
+        ".{}.partial-{}",
+        file_name(dir),
+        std::process::id()
+    ))
 }
 
 /// Writes `text` to `path`, mapping errors.

@@ -5,6 +5,9 @@ use crate::error::InputError;
 use crate::model::bond_based;
 use std::path::{Path, PathBuf};
 
+/// The largest number of grid points a scene may generate.
+pub const MAX_POINTS: usize = 50_000_000;
+
 /// An axis-aligned box in 3D coordinates; axes beyond the scene's dimension are unbounded.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Aabb {
@@ -234,13 +237,23 @@ impl Scene {
         };
 
         let mut regions = Vec::new();
+        let mut total_points = 0.0f64;
         for (k, r) in spec.regions.iter().enumerate() {
             let f = format!("regions[{k}]");
             let material = material_index(&format!("{f}.material"), &r.material)?;
             positive(&format!("{f}.spacing"), r.spacing)?;
             let bounds = aabb(&format!("{f}.box"), &r.bounds, d)?;
+            let mut count = 1.0f64;
             for a in 0..d {
                 let cells = (bounds.max[a] - bounds.min[a]) / r.spacing;
+                if cells < 0.5 {
+                    return Err(InputError::new(
+                        format!("{f}.box"),
+                        format!("extent {} along axis {a} is smaller than one spacing ({}): the region would hold no point",
+                            bounds.max[a] - bounds.min[a], r.spacing),
+                    ));
+                }
+                count *= cells.round();
                 if (cells - cells.round()).abs() > 1e-6 * cells.max(1.0) {
                     return Err(InputError::new(
                         format!("{f}.box"),
@@ -248,6 +261,12 @@ impl Scene {
                                  adjust the box or the spacing", bounds.max[a] - bounds.min[a], r.spacing),
                     ));
                 }
+            }
+            total_points += count;
+            if total_points > MAX_POINTS as f64 {
+                return Err(InputError::new(format!("{f}.spacing"), format!(
+                    "the regions would hold {total_points:.3e} points; at most {MAX_POINTS} are supported \
+                     (a direct solver needs far less than that to run out of memory): use a coarser spacing")));
             }
             let horizon = match (r.horizon, r.horizon_factor) {
                 (Some(_), Some(_)) => {
@@ -360,10 +379,13 @@ impl Scene {
         }
 
         let output = output(&spec.output, d)?;
-        let scene_name = spec
-            .name
-            .clone()
-            .unwrap_or_else(|| default_name.to_string());
+        let scene_name = match &spec.name {
+            Some(n) => {
+                name("name", n)?;
+                n.clone()
+            }
+            None => sanitize(default_name),
+        };
 
         let scene = Scene {
             name: scene_name,
@@ -470,6 +492,25 @@ fn check_horizon_factor(field: &str, m: f64) -> Result<(), InputError> {
         ));
     }
     Ok(())
+}
+
+/// A file-name-safe version of a default scene name.
+fn sanitize(n: &str) -> String {
+    let s: String = n
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    if s.is_empty() {
+        "scene".into()
+    } else {
+        s
+    }
 }
 
 fn name(field: &str, n: &str) -> Result<(), InputError> {

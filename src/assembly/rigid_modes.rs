@@ -1,0 +1,229 @@
+//! Detection of rigid motions left free by the prescribed displacements.
+//!
+//! Each connected body (points linked by intact bonds) has `d(d+1)/2` rigid
+//! motions, `u(x) = t + ω × (x − c)` (in 1D only the translation). They are all
+//! removed exactly when no non-zero combination vanishes on every prescribed
+//! component, i.e. when the Gram matrix `G_kl = Σ_{prescribed (i,c)} φ_k(x_i)_c φ_l(x_i)_c`
+//! of the rigid basis `φ_k` is non-singular. A singular `G` means the stiffness
+//! matrix is singular whatever the material: the run stops and the free motion
+//! is named (its null vector, as a translation direction or a rotation axis
+//! through a point), before any factorisation.
+
+use super::dofs::{DofMap, PRESCRIBED};
+use crate::discretization::Discretization;
+use crate::error::NumericalError;
+
+/// Errors if a connected body can move rigidly without changing any prescribed value.
+pub fn check(disc: &Discretization, dofs: &DofMap) -> Result<(), NumericalError> {
+    let n = disc.points.len();
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    for i in 0..n {
+        for b in disc.bonds.owned_by(i) {
+            if disc.bonds.intact[b] {
+                let (a, c) = (
+                    find(&mut parent, i),
+                    find(&mut parent, disc.bonds.neighbour[b] as usize),
+                );
+                parent[a] = c;
+            }
+        }
+    }
+    let mut members: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
+    for i in 0..n {
+        let root = find(&mut parent, i);
+        members.entry(root).or_default().push(i);
+    }
+    for points in members.values() {
+        check_body(disc, dofs, points)?;
+    }
+    Ok(())
+}
+
+fn check_body(
+    disc: &Discretization,
+    dofs: &DofMap,
+    points: &[usize],
+) -> Result<(), NumericalError> {
+    let d = disc.d;
+    let x = &disc.points.x;
+    let mut c = [0.0; 3];
+    for &i in points {
+        for a in 0..3 {
+            c[a] += x[i][a] / points.len() as f64;
+        }
+    }
+    let size = points
+        .iter()
+        .map(|&i| crate::geometry::norm(&crate::geometry::sub(&x[i], &c)))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let modes = match d {
+        1 => 1,
+        2 => 3,
+        _ => 6,
+    };
+    // φ_k(x)_comp for the basis: translations, then rotations about z (2D) or x, y, z (3D), scaled by the body size.
+    let basis = |k: usize, p: &[f64; 3], comp: usize| -> f64 {
+        if k < d {
+            return f64::from(k == comp);
+        }
+        let r = [
+            (p[0] - c[0]) / size,
+            (p[1] - c[1]) / size,
+            (p[2] - c[2]) / size,
+        ];
+        let axis = if d == 2 { 2 } else { k - d };
+        let mut w = [0.0; 3];
+        w[axis] = 1.0;
+        crate::geometry::cross(&w, &r)[comp]
+    };
+    let mut gram = [[0.0; 6]; 6];
+    for &i in points {
+        for comp in 0..d {
+            if dofs.free_index[3 * i + comp] == PRESCRIBED {
+                for k in 0..modes {
+                    let pk = basis(k, &x[i], comp);
+                    for l in 0..modes {
+                        gram[k][l] += pk * basis(l, &x[i], comp);
+                    }
+                }
+            }
+        }
+    }
+    let (values, vectors) = symmetric_eigen(&gram, modes);
+    let largest = values.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let free: Vec<usize> = (0..modes)
+        .filter(|&k| largest == 0.0 || values[k] <= 1e-10 * largest)
+        .collect();
+    if free.is_empty() {
+        return Ok(());
+    }
+    let description: Vec<String> = free
+        .iter()
+        .map(|&k| describe(&vectors[k], d, &c, size))
+        .collect();
+    Err(NumericalError::RigidMotion {
+        points: points.len(),
+        first: points[0],
+        position: x[points[0]],
+        motions: description.join("; "),
+    })
+}
+
+/// Names a rigid motion given by its basis coefficients.
+fn describe(v: &[f64; 6], d: usize, c: &[f64; 3], size: f64) -> String {
+    let fmt = |a: &[f64]| {
+        a.iter()
+            .map(|x| format!("{:.3}", if x.abs() < 5e-4 { 0.0 } else { *x }))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let t: Vec<f64> = v[..d].to_vec();
+    match d {
+        1 => "translation along x".into(),
+        2 => {
+            let w = v[2] / size;
+            if v[2].abs() < 1e-6 {
+                format!("translation along ({})", fmt(&t))
+            } else {
+                let p = [c[0] - t[1] / w, c[1] + t[0] / w];
+                format!("rotation about z through ({})", fmt(&p))
+            }
+        }
+        _ => {
+            let w = [v[3] / size, v[4] / size, v[5] / size];
+            let wn = crate::geometry::norm(&w);
+            if wn * size < 1e-6 {
+                format!("translation along ({})", fmt(&t))
+            } else {
+                let tt = [t[0], t[1], t[2]];
+                let shift = crate::geometry::cross(&w, &tt);
+                let p: Vec<f64> = (0..3).map(|a| c[a] + shift[a] / (wn * wn)).collect();
+                format!(
+                    "rotation about axis ({}) through ({})",
+                    fmt(&w.map(|x| x / wn)),
+                    fmt(&p)
+                )
+            }
+        }
+    }
+}
+
+/// Eigenvalues and eigenvectors (rows of the second result) of the leading
+/// `m × m` block of a symmetric matrix, by cyclic Jacobi rotations.
+fn symmetric_eigen(a: &[[f64; 6]; 6], m: usize) -> ([f64; 6], [[f64; 6]; 6]) {
+    let mut a = *a;
+    let mut v = [[0.0; 6]; 6];
+    for (k, row) in v.iter_mut().enumerate() {
+        row[k] = 1.0;
+    }
+    for _sweep in 0..50 {
+        let off: f64 = (0..m)
+            .flat_map(|p| (0..m).filter(move |&q| q != p).map(move |q| (p, q)))
+            .map(|(p, q)| a[p][q] * a[p][q])
+            .sum();
+        let diag: f64 = (0..m).map(|p| a[p][p] * a[p][p]).sum();
+        if off <= 1e-30 * diag.max(f64::MIN_POSITIVE) {
+            break;
+        }
+        for p in 0..m {
+            for q in p + 1..m {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let (cs, sn) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
+                for k in 0..m {
+                    let (akp, akq) = (a[k][p], a[k][q]);
+                    a[k][p] = cs * akp - sn * akq;
+                    a[k][q] = sn * akp + cs * akq;
+                }
+                for k in 0..m {
+                    let (apk, aqk) = (a[p][k], a[q][k]);
+                    a[p][k] = cs * apk - sn * aqk;
+                    a[q][k] = sn * apk + cs * aqk;
+                }
+                for k in 0..m {
+                    let (vpk, vqk) = (v[p][k], v[q][k]);
+                    v[p][k] = cs * vpk - sn * vqk;
+                    v[q][k] = sn * vpk + cs * vqk;
+                }
+            }
+        }
+    }
+    let mut values = [0.0; 6];
+    for k in 0..m {
+        values[k] = a[k][k];
+    }
+    (values, v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::symmetric_eigen;
+
+    #[test]
+    fn jacobi_diagonalises() {
+        let mut a = [[0.0; 6]; 6];
+        let m = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 1.0]];
+        for r in 0..3 {
+            a[r][..3].copy_from_slice(&m[r]);
+        }
+        let (values, vectors) = symmetric_eigen(&a, 3);
+        for k in 0..3 {
+            for r in 0..3 {
+                let av: f64 = (0..3).map(|c| m[r][c] * vectors[k][c]).sum();
+                assert!((av - values[k] * vectors[k][r]).abs() < 1e-12);
+            }
+        }
+    }
+}
