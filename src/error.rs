@@ -57,6 +57,12 @@ pub enum NumericalError {
         position: [f64; 3],
         ratio: f64,
     },
+    /// A shear-model owner whose intact bonds do not span the space.
+    #[error(
+        "the shape tensor of point {point} (x = {position:?}) is singular: its bonds do not span \
+         the space (too few neighbours, or all on one line), so its deformation gradient is undefined"
+    )]
+    SingularShapeTensor { point: usize, position: [f64; 3] },
     /// The LU factorisation found a structurally singular matrix.
     #[error(
         "the stiffness matrix is structurally singular at point {point}, component {component}"

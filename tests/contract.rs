@@ -10,6 +10,7 @@ use common::*;
 use dhpd::assembly::forces::internal_forces;
 use dhpd::discretization::Discretization;
 use dhpd::model::bond_based::BondBased;
+use dhpd::model::shear::Shear;
 use dhpd::model::Model;
 use dhpd::scene::Scene;
 
@@ -221,4 +222,16 @@ contract_tests!(
     "",
     symmetric = true,
     settings = ["1d", "plane_stress", "plane_strain", "3d"]
+);
+
+fn shear(scene: &Scene, disc: &Discretization) -> Shear {
+    Shear::new(disc, scene.dimension, &scene.materials).expect("shape tensors are regular")
+}
+
+contract_tests!(
+    shear_model,
+    shear,
+    "kind = \"shear\"",
+    symmetric = false,
+    settings = ["plane_stress", "plane_strain", "3d"]
 );

@@ -11,6 +11,7 @@ use crate::assembly::stiffness::Stiffness;
 use crate::discretization::{self, Discretization};
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
+use crate::model::shear::Shear;
 use crate::model::Model;
 use crate::scene::{ModelKind, Scene, SolverMethod};
 use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu};
@@ -155,6 +156,10 @@ impl Prepared {
                     &scene.materials,
                     scene.thickness,
                 );
+                solve_with(&model, scene, self)
+            }
+            ModelKind::Shear => {
+                let model = Shear::new(&self.disc, scene.dimension, &scene.materials)?;
                 solve_with(&model, scene, self)
             }
         }

@@ -9,6 +9,7 @@
 //! Sign convention: `K = −∂F_int/∂u`, so the static problem reads `K u = f_ext`.
 
 pub mod bond_based;
+pub mod shear;
 
 use crate::discretization::Discretization;
 

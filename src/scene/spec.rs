@@ -50,7 +50,7 @@ pub struct SceneSpec {
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct ModelSpec {
-    /// `"bond_based"` (default).
+    /// `"bond_based"` (default) or `"shear"`.
     #[serde(default)]
     pub kind: ModelKind,
     /// `"1d"`, `"plane_stress"`, `"plane_strain"` or `"3d"` (required).
@@ -76,6 +76,8 @@ pub enum ModelKind {
     /// Bond-based DH-PD (formulation Sec. 3).
     #[default]
     BondBased,
+    /// Shear-deformation DH-PD of Ren, Zhuang & Rabczuk (formulation Sec. 4): any ν, 2D or 3D.
+    Shear,
 }
 
 /// Spatial setting.
@@ -321,9 +323,9 @@ pub enum SolverMethod {
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// `"cholesky"` (default) or `"lu"`.
-    #[serde(default)]
-    pub method: SolverMethod,
+    /// `"cholesky"` or `"lu"`; default: Cholesky for the bond-based model,
+    /// LU for the shear model (its tangent is not symmetric).
+    pub method: Option<SolverMethod>,
 }
 
 /// `[output]`

@@ -402,9 +402,18 @@ impl Scene {
             cracks,
             boundaries,
             loads,
-            solver: spec.solver.method,
+            solver: spec.solver.method.unwrap_or(match spec.model.kind {
+                ModelKind::BondBased => SolverMethod::Cholesky,
+                ModelKind::Shear => SolverMethod::Lu,
+            }),
             output,
         };
+        if scene.model == ModelKind::Shear && d == 1 {
+            return Err(InputError::new(
+                "model.kind",
+                "the shear model is defined in 2D and 3D; use \"bond_based\" for a 1D bar",
+            ));
+        }
         if scene.model == ModelKind::BondBased {
             for (m, spec_m) in scene.materials.iter().zip(spec.materials.values()) {
                 bond_based::check_material(
@@ -458,13 +467,30 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
             let f = format!("materials.{name}");
             positive(&format!("{f}.youngs_modulus"), m.youngs_modulus)?;
             if let Some(nu) = m.poisson_ratio {
-                let upper = if spec.model.dimension == Dimension::PlaneStress { 1.0 } else { 0.5 };
-                if !nu.is_finite() || nu <= -1.0 || nu >= upper {
-                    return Err(InputError::new(format!("{f}.poisson_ratio"), format!(
-                        "{nu} is outside (-1, {upper}), the range of a stable isotropic material here")));
+                let plane_stress = spec.model.dimension == Dimension::PlaneStress;
+                if !nu.is_finite() || nu <= -1.0 || nu > 0.5 || (nu == 0.5 && !plane_stress) {
+                    let range = if plane_stress {
+                        "(-1, 0.5]"
+                    } else {
+                        "(-1, 0.5)"
+                    };
+                    return Err(InputError::new(
+                        format!("{f}.poisson_ratio"),
+                        format!(
+                        "{nu} is outside {range}, the range of a stable isotropic material here"),
+                    ));
                 }
+            } else if spec.model.kind == ModelKind::Shear {
+                return Err(InputError::new(
+                    format!("{f}.poisson_ratio"),
+                    "the shear model needs a Poisson ratio for every material",
+                ));
             }
-            Ok(Material { name: name.clone(), youngs_modulus: m.youngs_modulus, poisson_ratio: m.poisson_ratio.unwrap_or(implied) })
+            Ok(Material {
+                name: name.clone(),
+                youngs_modulus: m.youngs_modulus,
+                poisson_ratio: m.poisson_ratio.unwrap_or(implied),
+            })
         })
         .collect()
 }

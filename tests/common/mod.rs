@@ -37,9 +37,16 @@ pub fn small_body(dimension: &str, jump: bool, extra_model: &str) -> Scene {
         2 => format!("[{x}, 0.8]"),
         _ => format!("[{x}, 1.0, 1.0]"),
     };
+    // The shear model takes any Poisson ratio (and needs one); bond-based uses its own.
+    let shear = extra_model.contains("shear");
+    let (nu_a, nu_b) = if shear {
+        ("poisson_ratio = 0.3\n", "poisson_ratio = 0.2\n")
+    } else {
+        ("", "")
+    };
     let mut text = format!(
         "[model]\ndimension = \"{dimension}\"\n{extra_model}\n\
-         [materials.a]\nyoungs_modulus = 2.0e9\n[materials.b]\nyoungs_modulus = 5.0e9\n\
+         [materials.a]\nyoungs_modulus = 2.0e9\n{nu_a}[materials.b]\nyoungs_modulus = 5.0e9\n{nu_b}\
          [[regions]]\nmaterial = \"a\"\nspacing = {h}\nbox = {{ min = {}, max = {} }}\n",
         lo(0.0),
         hi(if d == 3 { 1.0 } else { 0.8 })

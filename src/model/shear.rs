@@ -1,0 +1,475 @@
+//! Shear-deformation dual-horizon PD (Ren, Zhuang & Rabczuk, seed 001;
+//! formulation Sec. 4), 2D (plane stress, plane strain) and 3D.
+//!
+//! Per owner `i`, over its intact bonds, with `ω_j = 1/|ξ_j|²` (001 Eq. 9) and
+//! `w_j = ω_j V_j ν_ij`:
+//!
+//! ```text
+//! m_i = Σ w_j |ξ_j|²,   K_i = Σ w_j ξ_j ⊗ ξ_j                      (shape tensor)
+//! F_i = (Σ w_j (ξ_j + η_j) ⊗ ξ_j) K_i⁻¹ = R_i P_i                   (001 Eq. 10-12, SVD)
+//! ξ_r = R ξ,  η_r = ξ + η − ξ_r,  θ_i = (d/m_i) Σ w_j η_r·ξ_r       (001 Eq. 15)
+//! η^d = η_r − (θ_i/d) ξ_r,  f_ij = (d ω_j/m_i)(κ θ_i ξ_r + 2μ η^d)  (001 Eq. 27-28)
+//! force on i: + f_ij V_i V_j ν_ij,   on j: − f_ij V_i V_j ν_ij
+//! ```
+//!
+//! `κ` is the bulk modulus of the setting (3D `E/(3(1−2ν))`, plane strain
+//! `E/(2(1+ν)(1−2ν))`, plane stress `E/(2(1−ν))`), `μ = E/(2(1+ν))`. The rotation
+//! is the proper rotation of the SVD `F = U Σ Vᵀ`, `R = U Vᵀ`, with the column of
+//! `U` of the smallest singular value flipped when `det(U Vᵀ) < 0`.
+//!
+//! **Linearisation** about the reference configuration (formulation Sec. 4):
+//! with `b_k = w_k K⁻¹ ξ_k`, `a_k = (d/m) w_k ξ_k`, `G = Σ η_k ⊗ b_k`,
+//! `W = (G − Gᵀ)/2` and `θ = Σ a_k·η_k`,
+//!
+//! ```text
+//! f_ij ≈ (d ω_j/m) [ (κ − 2μ/d) θ ξ_j + 2μ (η_j − W ξ_j) ] = Σ_k A_jk η_k
+//! A_jk = (d ω_j/m) [ (κ − 2μ/d) ξ_j ⊗ a_k + 2μ δ_jk I − μ ((b_k·ξ_j) I − b_k ⊗ ξ_j) ]
+//! ```
+//!
+//! and `∂f_ij/∂u_k = A_jk`, `∂f_ij/∂u_i = −Σ_k A_jk`. Each owner couples every
+//! pair of `{i} ∪ H_i`, so the stiffness links neighbours of neighbours
+//! ([`Coupling::Family`]) and is not symmetric in general.
+//!
+//! **Stress** (001 Eq. 32, with the sign of formulation Sec. 4):
+//! `σ_i = (m_i/d) Σ_j f_ij ⊗ ξ_r V_j ν_ij K_i⁻¹`; under a homogeneous strain with a
+//! full horizon it returns Hooke's law exactly.
+
+use super::{Block, Column, Coupling, Model};
+use crate::discretization::Discretization;
+use crate::error::NumericalError;
+use crate::geometry::{dot, sub};
+use crate::scene::{Dimension, Material};
+
+type Mat3 = [[f64; 3]; 3];
+
+/// Bulk and shear moduli `(κ, μ)` of a material in a setting.
+pub fn moduli(dim: Dimension, m: &Material) -> (f64, f64) {
+    let (e, nu) = (m.youngs_modulus, m.poisson_ratio);
+    let mu = e / (2.0 * (1.0 + nu));
+    let kappa = match dim {
+        Dimension::PlaneStress => e / (2.0 * (1.0 - nu)),
+        Dimension::PlaneStrain => e / (2.0 * (1.0 + nu) * (1.0 - 2.0 * nu)),
+        Dimension::Three | Dimension::One => e / (3.0 * (1.0 - 2.0 * nu)),
+    };
+    (kappa, mu)
+}
+
+/// What an owner's kernels need, computed once per set of intact bonds.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Owner {
+    /// Weighted volume `m_i`.
+    m: f64,
+    /// Inverse shape tensor `K_i⁻¹` (leading d × d block).
+    k_inv: Mat3,
+    /// `Σ_k a_k`.
+    a_sum: [f64; 3],
+    /// `Σ_k b_k`.
+    b_sum: [f64; 3],
+    /// Bulk modulus κ.
+    kappa: f64,
+    /// Shear modulus μ.
+    mu: f64,
+}
+
+/// The shear-deformation model with each owner's cached family data.
+#[derive(Debug, Clone)]
+pub struct Shear {
+    d: usize,
+    owners: Vec<Owner>,
+}
+
+impl Shear {
+    /// Computes every owner's weighted volume and inverse shape tensor. An owner
+    /// whose intact bonds do not span the space is an error naming the point.
+    pub fn new(
+        disc: &Discretization,
+        dim: Dimension,
+        materials: &[Material],
+    ) -> Result<Self, NumericalError> {
+        use rayon::prelude::*;
+        let d = disc.d;
+        let owners = (0..disc.points.len())
+            .into_par_iter()
+            .map(|i| {
+                let (kappa, mu) = moduli(dim, &materials[disc.points.material[i] as usize]);
+                owner_data(disc, i, kappa, mu).ok_or(NumericalError::SingularShapeTensor {
+                    point: i,
+                    position: disc.points.x[i],
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        Ok(Self { d, owners })
+    }
+
+    /// Stress at `owner` for displacements `u` (001 Eq. 32); `linear` selects the
+    /// linearised bond forces.
+    pub fn stress(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+    ) -> Mat3 {
+        let o = &self.owners[owner];
+        let bonds = disc.bonds.owned_by(owner);
+        let mut forces = vec![[0.0; 3]; bonds.len()];
+        let rotation = self.family_forces(disc, owner, u, linear, &mut forces);
+        let p = &disc.points;
+        let mut acc = [[0.0; 3]; 3];
+        for (slot, b) in bonds.enumerate() {
+            if !disc.bonds.intact[b] {
+                continue;
+            }
+            let j = disc.bonds.neighbour[b] as usize;
+            let xi = sub(&p.x[j], &p.x[owner]);
+            let xr = mat_vec(&rotation, &xi);
+            // forces[slot] holds f_ij V_i V_j ν_ij: divide V_i out, keep V_j ν_ij.
+            let f: [f64; 3] = std::array::from_fn(|a| forces[slot][a] / p.volume[owner]);
+            for r in 0..3 {
+                for c in 0..3 {
+                    acc[r][c] += f[r] * xr[c];
+                }
+            }
+        }
+        let mut sigma = [[0.0; 3]; 3];
+        for r in 0..self.d {
+            for c in 0..self.d {
+                sigma[r][c] = o.m / self.d as f64
+                    * (0..self.d).map(|k| acc[r][k] * o.k_inv[k][c]).sum::<f64>();
+            }
+        }
+        sigma
+    }
+
+    /// Writes the force each bond of `owner` puts on it into `out`; returns the
+    /// rotation used (identity for the linearised kernel).
+    fn family_forces(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    ) -> Mat3 {
+        let o = &self.owners[i];
+        let d = self.d;
+        let df = d as f64;
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        let first = bonds.offsets[i];
+        let family = bonds.owned_by(i);
+        let bond_vectors = |b: usize| {
+            let j = bonds.neighbour[b] as usize;
+            let xi = sub(&p.x[j], &p.x[i]);
+            let eta = sub(&u[j], &u[i]);
+            let len2 = dot(&xi, &xi);
+            (j, xi, eta, len2)
+        };
+        let mut rotation = identity();
+        if linear {
+            let mut g = [[0.0; 3]; 3];
+            let mut theta = 0.0;
+            for b in family.clone().filter(|&b| bonds.intact[b]) {
+                let (j, xi, eta, len2) = bond_vectors(b);
+                let w = p.volume[j] * bonds.volume_factor[b] / len2;
+                let bk = mat_vec(&o.k_inv, &xi);
+                for r in 0..3 {
+                    for c in 0..3 {
+                        g[r][c] += eta[r] * w * bk[c];
+                    }
+                }
+                theta += df / o.m * w * dot(&xi, &eta);
+            }
+            let wmat: Mat3 =
+                std::array::from_fn(|r| std::array::from_fn(|c| 0.5 * (g[r][c] - g[c][r])));
+            for b in family {
+                if !bonds.intact[b] {
+                    out[b - first] = [0.0; 3];
+                    continue;
+                }
+                let (j, xi, eta, len2) = bond_vectors(b);
+                let wx = mat_vec(&wmat, &xi);
+                let scale = df / (len2 * o.m) * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+                out[b - first] = std::array::from_fn(|a| {
+                    scale
+                        * ((o.kappa - 2.0 * o.mu / df) * theta * xi[a]
+                            + 2.0 * o.mu * (eta[a] - wx[a]))
+                });
+            }
+        } else {
+            let mut f = [[0.0; 3]; 3];
+            for b in family.clone().filter(|&b| bonds.intact[b]) {
+                let (j, xi, eta, len2) = bond_vectors(b);
+                let w = p.volume[j] * bonds.volume_factor[b] / len2;
+                for r in 0..d {
+                    for c in 0..d {
+                        f[r][c] += w * (xi[r] + eta[r]) * xi[c];
+                    }
+                }
+            }
+            let f = mat_mul(&f, &o.k_inv);
+            rotation = proper_rotation(&f, d);
+            let mut theta = 0.0;
+            for b in family.clone().filter(|&b| bonds.intact[b]) {
+                let (j, xi, eta, len2) = bond_vectors(b);
+                let w = p.volume[j] * bonds.volume_factor[b] / len2;
+                let xr = mat_vec(&rotation, &xi);
+                let er: [f64; 3] = std::array::from_fn(|a| xi[a] + eta[a] - xr[a]);
+                theta += df / o.m * w * dot(&er, &xr);
+            }
+            for b in family {
+                if !bonds.intact[b] {
+                    out[b - first] = [0.0; 3];
+                    continue;
+                }
+                let (j, xi, eta, len2) = bond_vectors(b);
+                let xr = mat_vec(&rotation, &xi);
+                let scale = df / (len2 * o.m) * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+                out[b - first] = std::array::from_fn(|a| {
+                    let er = xi[a] + eta[a] - xr[a];
+                    let ed = er - theta / df * xr[a];
+                    scale * (o.kappa * theta * xr[a] + 2.0 * o.mu * ed)
+                });
+            }
+        }
+        rotation
+    }
+}
+
+impl Model for Shear {
+    fn coupling(&self) -> Coupling {
+        Coupling::Family
+    }
+
+    fn owner_forces(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    ) {
+        self.family_forces(disc, owner, u, linear, out);
+    }
+
+    fn tangent_column(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        column: Column,
+        add: &mut dyn FnMut(usize, &Block),
+    ) {
+        let o = &self.owners[i];
+        let df = self.d as f64;
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        // The column's "a" and "b" vectors: a_k, b_k for a neighbour, minus their sums for the owner.
+        let (ak, bk, own_k, sign) = match column {
+            Column::Neighbour(k) => {
+                if !bonds.intact[k] {
+                    return;
+                }
+                let j = bonds.neighbour[k] as usize;
+                let xi = sub(&p.x[j], &p.x[i]);
+                let w = p.volume[j] * bonds.volume_factor[k] / dot(&xi, &xi);
+                let b = mat_vec(&o.k_inv, &xi);
+                (xi.map(|x| df / o.m * w * x), b.map(|x| w * x), Some(k), 1.0)
+            }
+            Column::Owner => (o.a_sum, o.b_sum, None, -1.0),
+        };
+        let mut owner_block = [[0.0; 3]; 3];
+        for b in bonds.owned_by(i) {
+            if !bonds.intact[b] {
+                continue;
+            }
+            let j = bonds.neighbour[b] as usize;
+            let xi = sub(&p.x[j], &p.x[i]);
+            let len2 = dot(&xi, &xi);
+            let pre = df / (len2 * o.m);
+            let bx = dot(&bk, &xi);
+            let diagonal = match own_k {
+                Some(k) => f64::from(k == b),
+                None => 1.0,
+            };
+            // A_jk (neighbour column) or Σ_k A_jk (owner column), then the sign of ∂/∂u.
+            let mut a: Block = [[0.0; 3]; 3];
+            for r in 0..3 {
+                for c in 0..3 {
+                    let delta = f64::from(r == c);
+                    a[r][c] = sign
+                        * pre
+                        * ((o.kappa - 2.0 * o.mu / df) * xi[r] * ak[c]
+                            + 2.0 * o.mu * diagonal * delta
+                            - o.mu * (bx * delta - bk[r] * xi[c]));
+                }
+            }
+            // K = −∂F/∂u: the owner feels +f V_i V_j ν, the neighbour −f V_i V_j ν.
+            let weight = p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+            let to_neighbour: Block =
+                std::array::from_fn(|r| std::array::from_fn(|c| weight * a[r][c]));
+            for r in 0..3 {
+                for c in 0..3 {
+                    owner_block[r][c] -= to_neighbour[r][c];
+                }
+            }
+            add(j, &to_neighbour);
+        }
+        add(i, &owner_block);
+    }
+}
+
+/// Weighted volume, inverse shape tensor and the column sums of owner `i`;
+/// `None` when the intact bonds do not span the space.
+fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Owner> {
+    let d = disc.d;
+    let p = &disc.points;
+    let bonds = &disc.bonds;
+    let (mut m, mut k, mut xw) = (0.0, [[0.0; 3]; 3], [0.0; 3]);
+    for b in bonds.owned_by(i).filter(|&b| bonds.intact[b]) {
+        let j = bonds.neighbour[b] as usize;
+        let xi = sub(&p.x[j], &p.x[i]);
+        let w = p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
+        m += w * dot(&xi, &xi);
+        for r in 0..3 {
+            xw[r] += w * xi[r];
+            for c in 0..3 {
+                k[r][c] += w * xi[r] * xi[c];
+            }
+        }
+    }
+    let k_inv = invert(&k, d)?;
+    let df = d as f64;
+    Some(Owner {
+        m,
+        k_inv,
+        a_sum: xw.map(|x| df / m * x),
+        b_sum: mat_vec(&k_inv, &xw),
+        kappa,
+        mu,
+    })
+}
+
+/// Inverse of the leading d × d block (zeros elsewhere); `None` if it is singular
+/// relative to its size (reciprocal condition below 1e-10).
+fn invert(k: &Mat3, d: usize) -> Option<Mat3> {
+    let scale = (0..d).map(|a| k[a][a]).fold(0.0, f64::max);
+    if scale <= 0.0 {
+        return None;
+    }
+    let mut inv = [[0.0; 3]; 3];
+    match d {
+        2 => {
+            let det = k[0][0] * k[1][1] - k[0][1] * k[1][0];
+            if det <= 1e-10 * scale * scale {
+                return None;
+            }
+            inv[0][0] = k[1][1] / det;
+            inv[1][1] = k[0][0] / det;
+            inv[0][1] = -k[0][1] / det;
+            inv[1][0] = -k[1][0] / det;
+        }
+        _ => {
+            let c = |r: usize, s: usize| {
+                let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
+                let (s1, s2) = ((s + 1) % 3, (s + 2) % 3);
+                k[r1][s1] * k[r2][s2] - k[r1][s2] * k[r2][s1]
+            };
+            let det = k[0][0] * c(0, 0) + k[0][1] * c(0, 1) + k[0][2] * c(0, 2);
+            if det <= 1e-10 * scale * scale * scale {
+                return None;
+            }
+            for r in 0..3 {
+                for s in 0..3 {
+                    inv[r][s] = c(s, r) / det;
+                }
+            }
+        }
+    }
+    Some(inv)
+}
+
+fn identity() -> Mat3 {
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+}
+
+fn mat_vec(m: &Mat3, v: &[f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+}
+
+fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
+    std::array::from_fn(|r| std::array::from_fn(|c| (0..3).map(|k| a[r][k] * b[k][c]).sum()))
+}
+
+/// The rotation of the polar decomposition `F = R P` by SVD, made proper.
+fn proper_rotation(f: &Mat3, d: usize) -> Mat3 {
+    let mut r = identity();
+    if d == 2 {
+        let m = nalgebra::Matrix2::new(f[0][0], f[0][1], f[1][0], f[1][1]);
+        let svd = m.svd(true, true);
+        let (mut u, vt) = (svd.u.expect("u computed"), svd.v_t.expect("v computed"));
+        if (u * vt).determinant() < 0.0 {
+            let smallest = if svd.singular_values[0] < svd.singular_values[1] {
+                0
+            } else {
+                1
+            };
+            u.column_mut(smallest).neg_mut();
+        }
+        let rot = u * vt;
+        for a in 0..2 {
+            for b in 0..2 {
+                r[a][b] = rot[(a, b)];
+            }
+        }
+    } else {
+        let m = nalgebra::Matrix3::from_fn(|a, b| f[a][b]);
+        let svd = m.svd(true, true);
+        let (mut u, vt) = (svd.u.expect("u computed"), svd.v_t.expect("v computed"));
+        if (u * vt).determinant() < 0.0 {
+            let smallest = svd.singular_values.imin();
+            u.column_mut(smallest).neg_mut();
+        }
+        let rot = u * vt;
+        for a in 0..3 {
+            for b in 0..3 {
+                r[a][b] = rot[(a, b)];
+            }
+        }
+    }
+    r
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn proper_rotation_of_a_rotation_and_a_reflection() {
+        let (s, c) = (0.3f64.sin(), 0.3f64.cos());
+        let rot = [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]];
+        let stretched = mat_mul(&rot, &[[1.2, 0.1, 0.0], [0.1, 0.9, 0.0], [0.0, 0.0, 1.0]]);
+        for d in [2, 3] {
+            let r = proper_rotation(&stretched, d);
+            for a in 0..d {
+                assert!((0..d).all(|b| (r[a][b] - rot[a][b]).abs() < 1e-12));
+            }
+        }
+        // A reflection gives a proper rotation (det +1), never the reflection.
+        let reflect = [[-1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let r = proper_rotation(&reflect, 2);
+        assert!((r[0][0] * r[1][1] - r[0][1] * r[1][0] - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn inverse() {
+        let k = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 1.0]];
+        let inv = invert(&k, 3).unwrap();
+        let id = mat_mul(&k, &inv);
+        for a in 0..3 {
+            for b in 0..3 {
+                assert!((id[a][b] - f64::from(a == b)).abs() < 1e-14);
+            }
+        }
+        assert!(invert(&[[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0; 3]], 2).is_none());
+    }
+}
