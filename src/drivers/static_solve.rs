@@ -100,6 +100,8 @@ pub struct StaticSolution {
     pub timings: Timings,
     /// Sizes.
     pub counts: Counts,
+    /// Recovered stress per point, when the scene asks for it.
+    pub stress: Option<Vec<crate::model::Block>>,
     /// The reduced system.
     pub system: LinearSystem,
 }
@@ -255,6 +257,22 @@ pub fn solve_with<M: Model>(
         })
         .collect();
     timings.solve = t.elapsed().as_secs_f64();
+    let stress = scene.output.stress.then(|| {
+        use rayon::prelude::*;
+        (0..disc.points.len())
+            .into_par_iter()
+            .map(|i| model.stress(&disc, i, &u).unwrap_or_default())
+            .collect::<Vec<_>>()
+    });
+    if stress
+        .as_ref()
+        .is_some_and(|s| s.iter().flatten().flatten().any(|v| !v.is_finite()))
+    {
+        return Err(NumericalError::NonFinite {
+            what: "the recovered stress".into(),
+        }
+        .into());
+    }
 
     let counts = Counts {
         points: disc.points.len(),
@@ -275,6 +293,7 @@ pub fn solve_with<M: Model>(
         residual,
         timings,
         counts,
+        stress,
         system: LinearSystem {
             pattern,
             stiffness,

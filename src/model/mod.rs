@@ -51,6 +51,12 @@ pub trait Model: Sync {
         out: &mut [[f64; 3]],
     );
 
+    /// Recovered stress at `owner` for displacements `u` (linearised), if the model
+    /// defines one.
+    fn stress(&self, _disc: &Discretization, _owner: usize, _u: &[[f64; 3]]) -> Option<Block> {
+        None
+    }
+
     /// Calls `add(row_point, block)` with the blocks `K[row_point][column]`
     /// contributed by `owner`'s bonds to the stiffness column of `column`.
     fn tangent_column(

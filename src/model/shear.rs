@@ -103,7 +103,7 @@ impl Shear {
 
     /// Stress at `owner` for displacements `u` (001 Eq. 32); `linear` selects the
     /// linearised bond forces.
-    pub fn stress(
+    pub fn stress_at(
         &self,
         disc: &Discretization,
         owner: usize,
@@ -250,6 +250,10 @@ impl Model for Shear {
         out: &mut [[f64; 3]],
     ) {
         self.family_forces(disc, owner, u, linear, out);
+    }
+
+    fn stress(&self, disc: &Discretization, owner: usize, u: &[[f64; 3]]) -> Option<Block> {
+        Some(self.stress_at(disc, owner, u, true))
     }
 
     fn tangent_column(

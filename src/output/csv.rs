@@ -29,15 +29,32 @@ pub fn write_points(path: &Path, scene: &Scene, s: &StaticSolution) -> Result<()
     let d = s.disc.d;
     let p = &s.disc.points;
     let bonds = s.disc.bonds.touch_counts(p.len());
+    let components = stress_components(d);
+    let stress_header: String = components
+        .iter()
+        .map(|(name, _, _)| format!(",{name}"))
+        .collect();
     let mut t = format!(
-        "id,{},{},volume,spacing,horizon,material,bond_count\n",
+        "id,{},{},volume,spacing,horizon,material,bond_count{}\n",
         header(d, ""),
-        header(d, "u_")
+        header(d, "u_"),
+        if s.stress.is_some() {
+            stress_header.as_str()
+        } else {
+            ""
+        }
     );
     for i in 0..p.len() {
+        let stress: String = match &s.stress {
+            Some(sigma) => components
+                .iter()
+                .map(|&(_, r, c)| format!(",{:e}", sigma[i][r][c]))
+                .collect(),
+            None => String::new(),
+        };
         let _ = writeln!(
             t,
-            "{i},{},{},{:e},{:e},{:e},{},{}",
+            "{i},{},{},{:e},{:e},{:e},{},{}{stress}",
             row(&p.x[i], d),
             row(&s.u[i], d),
             p.volume[i],
@@ -48,6 +65,22 @@ pub fn write_points(path: &Path, scene: &Scene, s: &StaticSolution) -> Result<()
         );
     }
     super::write_file(path, &t)
+}
+
+/// Names and indices of the independent stress components in `d` dimensions.
+pub fn stress_components(d: usize) -> Vec<(&'static str, usize, usize)> {
+    if d == 3 {
+        vec![
+            ("sxx", 0, 0),
+            ("syy", 1, 1),
+            ("szz", 2, 2),
+            ("syz", 1, 2),
+            ("sxz", 0, 2),
+            ("sxy", 0, 1),
+        ]
+    } else {
+        vec![("sxx", 0, 0), ("syy", 1, 1), ("sxy", 0, 1)]
+    }
 }
 
 /// Writes one profile: arc length, point id, position, displacement.

@@ -33,6 +33,14 @@ pub fn write(path: &Path, _scene: &Scene, s: &StaticSolution) -> Result<(), Erro
         let _ = writeln!(t, "{:e} {:e} {:e}", u[0], u[1], u[2]);
     }
     t.push_str("</DataArray>\n");
+    if let Some(stress) = &s.stress {
+        t.push_str("<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"9\" format=\"ascii\">\n");
+        for sigma in stress {
+            let row: Vec<String> = sigma.iter().flatten().map(|v| format!("{v:e}")).collect();
+            let _ = writeln!(t, "{}", row.join(" "));
+        }
+        t.push_str("</DataArray>\n");
+    }
     scalar(
         &mut t,
         "Float64",

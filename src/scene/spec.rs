@@ -338,6 +338,10 @@ pub struct OutputSpec {
     /// Write `points.csv` (default true).
     #[serde(default = "default_true")]
     pub points_csv: bool,
+    /// Recover the stress at every point (shear model, 001 Eq. 32) and add it to
+    /// `points.csv` and `points.vtu` (default false).
+    #[serde(default)]
+    pub stress: bool,
     /// Write `K.mtx` and `f.mtx` (reduced system, Matrix Market) (default false).
     #[serde(default)]
     pub matrix_market: bool,
@@ -354,6 +358,7 @@ impl Default for OutputSpec {
         Self {
             vtu: true,
             points_csv: true,
+            stress: false,
             matrix_market: false,
             profiles: Vec::new(),
             probes: Vec::new(),

@@ -159,6 +159,8 @@ pub struct OutputSettings {
     pub vtu: bool,
     /// `points.csv`.
     pub points_csv: bool,
+    /// Stress recovery.
+    pub stress: bool,
     /// `K.mtx`, `f.mtx`.
     pub matrix_market: bool,
     /// Profiles.
@@ -408,6 +410,12 @@ impl Scene {
             }),
             output,
         };
+        if scene.output.stress && scene.model != ModelKind::Shear {
+            return Err(InputError::new(
+                "output.stress",
+                "stress recovery is defined for the shear model (model.kind = \"shear\")",
+            ));
+        }
         if scene.model == ModelKind::Shear && d == 1 {
             return Err(InputError::new(
                 "model.kind",
@@ -778,6 +786,7 @@ fn output(o: &OutputSpec, d: usize) -> Result<OutputSettings, InputError> {
     Ok(OutputSettings {
         vtu: o.vtu,
         points_csv: o.points_csv,
+        stress: o.stress,
         matrix_market: o.matrix_market,
         profiles,
         probes,
