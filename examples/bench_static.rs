@@ -1,46 +1,52 @@
-//! Static-solve benchmark (issue 2): per-phase wall time and peak memory.
+//! Static-solve benchmark: per-phase wall time (the driver's own timers) and peak memory.
 //!
 //! ```text
-//! cargo run --release --example bench_static -- 2d 200 5   # 200 x 200 = 40,000 points, 5 repeats
-//! cargo run --release --example bench_static -- 2d 400 3   # 160,000 points
-//! cargo run --release --example bench_static -- 3d 37 3    # 37^3 = 50,653 points
+//! cargo run --release --example bench_static -- 2d 200 5                 # bond-based, 40,000 points, 5 repeats
+//! cargo run --release --example bench_static -- 2d 400 3                 # 160,000 points
+//! cargo run --release --example bench_static -- 3d 37 1                  # 37^3 = 50,653 points
+//! cargo run --release --example bench_static -- 2d 201 3 shear           # shear model, 40,401 points (GMRES)
+//! cargo run --release --example bench_static -- 2d 201 1 shear lu        # the same with sparse LU
+//! RAYON_NUM_THREADS=1 cargo run --release --example bench_static -- ...  # one thread
 //! ```
 //!
-//! Problem: a unit square (cube) of plane-stress (3D) bond-based DH-PD,
-//! δ = 3.015Δ, left layer clamped, right face pulled by a traction. Each phase is
-//! timed in every repeat and the median is printed; the peak resident memory
-//! (VmHWM) is that of the whole process. Run one size per process.
+//! Problem: a unit square (cube), δ = 3.015Δ, ν = 1/3 plane stress (1/4 in 3D),
+//! left layer clamped, right face pulled by a traction. Medians over the repeats;
+//! the peak resident memory (VmHWM) is that of the whole process: run one size
+//! per process.
 
-use dhpd::assembly::dofs::DofMap;
-use dhpd::assembly::loads::external_forces;
-use dhpd::assembly::pattern::Pattern;
-use dhpd::assembly::stiffness::Stiffness;
-use dhpd::discretization;
-use dhpd::model::bond_based::BondBased;
-use dhpd::model::Model;
+use dhpd::drivers::static_solve;
 use dhpd::scene::{parse_spec, Scene};
-use dhpd::solve::{relative_residual, Cholesky};
-use std::time::Instant;
 
-fn scene(dim: &str, n: usize) -> Scene {
+fn scene(dim: &str, n: usize, model: &str, method: &str) -> Scene {
     let h = 1.0 / n as f64;
-    let text = if dim == "3d" {
-        format!(
-            "[model]\ndimension = \"3d\"\n[materials.m]\nyoungs_modulus = 2e11\n\
-             [[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = [0.0, 0.0, 0.0], max = [1.0, 1.0, 1.0] }}\n\
-             [[boundary]]\nname = \"left\"\nbox = {{ min = [0.0, 0.0, 0.0], max = [{}, 1.0, 1.0] }}\ndisplacement = {{ x = 0.0, y = 0.0, z = 0.0 }}\n\
-             [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1e8, 0.0, 0.0]\n",
-            3.0 * h
+    let (dimension, nu, lo, hi, fix, hi_left, value) = if dim == "3d" {
+        (
+            "3d",
+            0.25,
+            "[0.0, 0.0, 0.0]",
+            "[1.0, 1.0, 1.0]",
+            "x = 0.0, y = 0.0, z = 0.0",
+            format!("[{}, 1.0, 1.0]", 3.0 * h),
+            "[1e8, 0.0, 0.0]",
         )
     } else {
-        format!(
-            "[model]\ndimension = \"plane_stress\"\n[materials.m]\nyoungs_modulus = 2e11\n\
-             [[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = [0.0, 0.0], max = [1.0, 1.0] }}\n\
-             [[boundary]]\nname = \"left\"\nbox = {{ min = [0.0, 0.0], max = [{}, 1.0] }}\ndisplacement = {{ x = 0.0, y = 0.0 }}\n\
-             [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1e8, 0.0]\n",
-            3.0 * h
+        (
+            "plane_stress",
+            1.0 / 3.0,
+            "[0.0, 0.0]",
+            "[1.0, 1.0]",
+            "x = 0.0, y = 0.0",
+            format!("[{}, 1.0]", 3.0 * h),
+            "[1e8, 0.0]",
         )
     };
+    let text = format!(
+        "[model]\ndimension = \"{dimension}\"\nkind = \"{model}\"\n[materials.m]\nyoungs_modulus = 2e11\npoisson_ratio = {nu}\n\
+         [[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = {lo}, max = {hi} }}\n\
+         [[boundary]]\nname = \"left\"\nbox = {{ min = {lo}, max = {hi_left} }}\ndisplacement = {{ {fix} }}\n\
+         [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = {value}\n{}",
+        if method.is_empty() { String::new() } else { format!("[solver]\nmethod = \"{method}\"\n") }
+    );
     Scene::try_from_spec(
         parse_spec(&text, false).unwrap(),
         std::path::Path::new("."),
@@ -70,7 +76,9 @@ fn main() {
     let dim = args.get(1).map_or("2d", String::as_str).to_string();
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(200);
     let repeats: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(3);
-    let scene = scene(&dim, n);
+    let model = args.get(4).map_or("bond_based", String::as_str).to_string();
+    let method = args.get(5).map_or("", String::as_str).to_string();
+    let scene = scene(&dim, n, &model, &method);
     let names = [
         "points",
         "neighbours",
@@ -83,65 +91,47 @@ fn main() {
     let mut times: Vec<Vec<f64>> = vec![Vec::new(); names.len()];
     let mut info = String::new();
     for _ in 0..repeats {
-        let t = Instant::now();
-        let raw = discretization::generate_points(&scene).unwrap();
-        times[0].push(t.elapsed().as_secs_f64());
-        let t = Instant::now();
-        let disc = discretization::discretize(&scene, raw).unwrap();
-        times[1].push(t.elapsed().as_secs_f64());
-        let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-        let dofs = DofMap::new(&disc.points, disc.d, &scene.boundaries).unwrap();
-        let (f, _) = external_forces(&disc.points, disc.d, &scene.loads).unwrap();
-        let t = Instant::now();
-        let pattern = Pattern::new(&disc, &dofs, model.coupling());
-        times[2].push(t.elapsed().as_secs_f64());
-        let t = Instant::now();
-        let k = Stiffness::assemble(&model, &disc, &dofs, &pattern);
-        times[3].push(t.elapsed().as_secs_f64());
-        let t = Instant::now();
-        let mut chol = Cholesky::analyse(k.view(&pattern)).unwrap();
-        eprintln!(
-            "  (factor needs {:.2} GiB)",
-            chol.factor_bytes() as f64 / 1073741824.0
-        );
-        if let Err(e) = dhpd::solve::check_memory(chol.factor_bytes()) {
-            println!("{dim} n={n}: {e}");
-            return;
+        let s = match static_solve::solve(&scene) {
+            Ok(s) => s,
+            Err(e) => {
+                println!("{dim} n={n} {model}: {e}");
+                return;
+            }
+        };
+        let t = &s.timings;
+        for (k, v) in [
+            t.discretization,
+            t.neighbour_search,
+            t.pattern,
+            t.assembly,
+            t.symbolic_factorization,
+            t.numeric_factorization,
+            t.solve,
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            times[k].push(v);
         }
-        times[4].push(t.elapsed().as_secs_f64());
-        let t = Instant::now();
-        chol.factorize(k.view(&pattern)).unwrap();
-        times[5].push(t.elapsed().as_secs_f64());
-        let b: Vec<f64> = dofs
-            .free_dofs
-            .iter()
-            .map(|&(i, c)| f[i as usize][c as usize])
-            .collect();
-        let t = Instant::now();
-        let mut x = b.clone();
-        chol.solve_in_place(&mut x);
-        times[6].push(t.elapsed().as_secs_f64());
-        let residual = relative_residual(&k.mul(&pattern, &x), &b);
+        let c = &s.counts;
         info = format!(
-            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, residual {:.1e}",
-            disc.points.len(),
-            disc.bonds.len(),
-            dofs.n_free(),
-            pattern.nnz(),
-            chol.nnz_l(),
-            residual
+            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, gmres iterations {}, residual {:.1e}",
+            c.points, c.bonds, c.dofs, c.nnz_k, c.nnz_l.map_or("-".into(), |v| v.to_string()), c.asymmetry,
+            c.gmres.map_or("-".into(), |g| g.iterations.to_string()), s.residual
         );
     }
     println!(
-        "{dim} n={n} ({repeats} repeats, {} rayon threads): {info}",
+        "{dim} n={n} {model} {method} ({repeats} repeats, {} rayon threads): {info}",
         rayon::current_num_threads()
     );
     for (name, t) in names.iter().zip(times) {
-        println!(
-            "  {name:<10} median {:.3} s  (min {:.3}, max {:.3})",
-            median(t.clone()),
+        let (lo, hi) = (
             t.iter().cloned().fold(f64::INFINITY, f64::min),
-            t.iter().cloned().fold(0.0, f64::max)
+            t.iter().cloned().fold(0.0, f64::max),
+        );
+        println!(
+            "  {name:<10} median {:.3} s  (min {lo:.3}, max {hi:.3})",
+            median(t)
         );
     }
     println!("  peak memory {:.0} MiB", peak_memory_mib());

@@ -61,9 +61,31 @@ pub struct FemReference {
     pub reaction_x: Option<f64>,
     /// Estimated discretisation error of `reaction_x` (difference to the previous mesh).
     pub reaction_x_est_error: Option<f64>,
+    /// Line profiles: name → column → values.
+    pub profiles: Option<BTreeMap<String, BTreeMap<String, Vec<f64>>>>,
+    /// Largest displacement magnitude, when the reference states it.
+    pub max_abs_u: Option<f64>,
 }
 
 impl FemReference {
+    /// Linear interpolation of column `field` of profile `name` at abscissa
+    /// `s` of column `along`; `None` outside the profile or if absent.
+    pub fn profile_at(&self, name: &str, along: &str, field: &str, s: f64) -> Option<f64> {
+        let profile = self.profiles.as_ref()?.get(name)?;
+        let (xs, ys) = (profile.get(along)?, profile.get(field)?);
+        let k = xs.windows(2).position(|w| w[0] <= s && s <= w[1])?;
+        let t = (s - xs[k]) / (xs[k + 1] - xs[k]);
+        Some((1.0 - t) * ys[k] + t * ys[k + 1])
+    }
+}
+
+impl FemReference {
+    /// Reads a reference JSON file.
+    pub fn from_file(path: &std::path::Path) -> Result<Self, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        Self::from_json(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
     /// Parses a reference JSON document.
     pub fn from_json(text: &str) -> Result<Self, serde_json::Error> {
         serde_json::from_str(text)

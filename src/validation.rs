@@ -147,3 +147,222 @@ impl Bimaterial {
         BAR_DISPLACEMENT * area / ((0.5 - a) / 1.0 + (b - 0.5) / 2.0)
     }
 }
+
+/// Loading of the plate with a hole.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum HoleLoad {
+    /// Traction P on the left and right edges (issue 3's statement).
+    Uniaxial,
+    /// Tension P on the left and right edges, compression P on the top and bottom
+    /// (the loading that reproduces 001 Table 1's Abaqus figures).
+    TensionCompression,
+}
+
+/// Plate with a hole (001 Sec. 6.3): [−0.5, 0.5]², hole radius 0.125 m, E = 30 GPa,
+/// ν = 1/3, P = 1 MPa, plane stress. The loads are self-equilibrated, so the plate
+/// is held statically determinately (both components of the point nearest
+/// (−0.5, 0), the y component of the point nearest (0.5, 0)): the supports carry
+/// no force and the solution is the free plate's up to a rigid motion, which
+/// [`remove_rigid_motion`] takes out before comparing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlateWithHole {
+    /// Grid spacing.
+    pub spacing: f64,
+    /// δ/Δx.
+    pub horizon_factor: f64,
+    /// Shear-deformation model instead of bond-based.
+    pub shear: bool,
+    /// Loading.
+    pub load: HoleLoad,
+}
+
+/// Pressure on the plate with a hole (Pa).
+pub const HOLE_TRACTION: f64 = 1e6;
+
+impl PlateWithHole {
+    /// The scene.
+    pub fn scene(&self) -> Scene {
+        let h = self.spacing;
+        let p = HOLE_TRACTION;
+        let kind = if self.shear { "shear" } else { "bond_based" };
+        let mut text = format!(
+            r#"
+            name = "plate_with_hole"
+            [model]
+            dimension = "plane_stress"
+            kind = "{kind}"
+            [discretization]
+            horizon_factor = {m}
+            [materials.concrete]
+            youngs_modulus = 30e9
+            poisson_ratio = 0.3333333333333333
+            [[regions]]
+            material = "concrete"
+            spacing = {h}
+            box = {{ min = [-0.5, -0.5], max = [0.5, 0.5] }}
+            [[holes]]
+            center = [0.0, 0.0]
+            radius = 0.125
+            [[boundary]]
+            name = "pin"
+            box = {{ min = [-0.5, 0.0], max = [{pin_x}, {h}] }}
+            displacement = {{ x = 0.0, y = 0.0 }}
+            [[boundary]]
+            name = "roller"
+            box = {{ min = [{roller_x}, 0.0], max = [0.5, {h}] }}
+            displacement = {{ y = 0.0 }}
+            [[loads]]
+            name = "left"
+            kind = "traction"
+            face = "-x"
+            value = [-{p}, 0.0]
+            [[loads]]
+            name = "right"
+            kind = "traction"
+            face = "+x"
+            value = [{p}, 0.0]
+            "#,
+            m = self.horizon_factor,
+            pin_x = -0.5 + h,
+            roller_x = 0.5 - h,
+        );
+        if self.load == HoleLoad::TensionCompression {
+            text += &format!(
+                "[[loads]]\nname = \"bottom\"\nkind = \"traction\"\nface = \"-y\"\nvalue = [0.0, {p}]\n\
+                 [[loads]]\nname = \"top\"\nkind = \"traction\"\nface = \"+y\"\nvalue = [0.0, -{p}]\n"
+            );
+        }
+        if self.shear {
+            text += "[output]\nstress = true\n";
+        }
+        let spec = parse_spec(&text, false).expect("generated scene parses");
+        Scene::try_from_spec(spec, Path::new("."), "plate_with_hole")
+            .expect("generated scene is valid")
+    }
+}
+
+/// Subtracts the volume-weighted mean translation and rotation (2D) from `u`.
+pub fn remove_rigid_motion(x: &[[f64; 3]], volume: &[f64], u: &mut [[f64; 3]]) {
+    let total: f64 = volume.iter().sum();
+    let mean =
+        |f: &dyn Fn(usize) -> f64| (0..x.len()).map(|i| volume[i] * f(i)).sum::<f64>() / total;
+    let c = [mean(&|i| x[i][0]), mean(&|i| x[i][1])];
+    let t = [mean(&|i| u[i][0]), mean(&|i| u[i][1])];
+    let r2 = mean(&|i| (x[i][0] - c[0]).powi(2) + (x[i][1] - c[1]).powi(2));
+    let w =
+        mean(&|i| (x[i][0] - c[0]) * (u[i][1] - t[1]) - (x[i][1] - c[1]) * (u[i][0] - t[0])) / r2;
+    for i in 0..x.len() {
+        u[i][0] -= t[0] - w * (x[i][1] - c[1]);
+        u[i][1] -= t[1] + w * (x[i][0] - c[0]);
+    }
+}
+
+/// Errors of a plate-with-hole solution against its FEM reference.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct HoleComparison {
+    /// Points compared (those where the FEM grid can be interpolated).
+    pub points: usize,
+    /// `‖u − u_FEM‖₂ / ‖u_FEM‖₂` over those points (rigid motion removed).
+    pub l2_displacement: f64,
+    /// The same over points farther than one horizon from every boundary.
+    pub l2_displacement_interior: f64,
+    /// `(max|u| − max|u_FEM|) / max|u_FEM|`.
+    pub max_displacement_error: f64,
+    /// σ_xx at the top of the hole (mean of the two points nearest (0, r)): dhpd, FEM there.
+    pub sxx_hole_top: [f64; 2],
+    /// σ_yy at the side of the hole (mean of the two points nearest (r, 0)): dhpd, FEM there.
+    pub syy_hole_side: [f64; 2],
+    /// Largest |σ_xx| over the plate: dhpd, FEM (the paper's measure).
+    pub sxx_max: [f64; 2],
+    /// Largest |σ_yy| over the plate: dhpd, FEM.
+    pub syy_max: [f64; 2],
+}
+
+/// Compares a plate-with-hole solution with a FEM reference (`validation/plate_with_hole/fem`).
+pub fn compare_plate(
+    s: &StaticSolution,
+    reference: &crate::reference::FemReference,
+) -> HoleComparison {
+    let p = &s.disc.points;
+    let mut u = s.u.clone();
+    remove_rigid_motion(&p.x, &p.volume, &mut u);
+    let grid = &reference.grid;
+    let (mut num, mut den, mut num_in, mut den_in, mut count) = (0.0, 0.0, 0.0, 0.0, 0);
+    for i in 0..p.len() {
+        let [x, y, _] = p.x[i];
+        let (Some(fx), Some(fy)) = (grid.interpolate("ux", x, y), grid.interpolate("uy", x, y))
+        else {
+            continue;
+        };
+        let e2 = (u[i][0] - fx).powi(2) + (u[i][1] - fy).powi(2);
+        let r2 = fx * fx + fy * fy;
+        num += e2;
+        den += r2;
+        count += 1;
+        let clearance = (0.5 - x.abs())
+            .min(0.5 - y.abs())
+            .min((x * x + y * y).sqrt() - 0.125);
+        if clearance > p.horizon[i] {
+            num_in += e2;
+            den_in += r2;
+        }
+    }
+    let max_u = u
+        .iter()
+        .map(|v| (v[0] * v[0] + v[1] * v[1]).sqrt())
+        .fold(0.0, f64::max);
+    let fem_max_u = reference.max_abs_u.unwrap_or(f64::NAN);
+    let (mut sxx_top, mut syy_side, mut sxx_max, mut syy_max) =
+        ([0.0; 2], [0.0; 2], [0.0; 2], [0.0; 2]);
+    if let Some(stress) = &s.stress {
+        // The row of points just outside the hole on the axes.
+        let nearest = |axis: usize| {
+            let other = 1 - axis;
+            let candidates: Vec<usize> = (0..p.len())
+                .filter(|&i| p.x[i][other].abs() < p.spacing[i] && p.x[i][axis] > 0.0)
+                .collect();
+            let lowest = candidates
+                .iter()
+                .map(|&i| p.x[i][axis])
+                .fold(f64::INFINITY, f64::min);
+            let row: Vec<usize> = candidates
+                .into_iter()
+                .filter(|&i| p.x[i][axis] <= lowest + 1e-12)
+                .collect();
+            (row.clone(), lowest)
+        };
+        let (top, y_top) = nearest(1);
+        let (side, x_side) = nearest(0);
+        sxx_top[0] = top.iter().map(|&i| stress[i][0][0]).sum::<f64>() / top.len() as f64;
+        sxx_top[1] = reference
+            .profile_at("x=0", "y", "sxx", y_top)
+            .unwrap_or(f64::NAN);
+        syy_side[0] = side.iter().map(|&i| stress[i][1][1]).sum::<f64>() / side.len() as f64;
+        syy_side[1] = reference
+            .profile_at("y=0", "x", "syy", x_side)
+            .unwrap_or(f64::NAN);
+        let largest = |f: &dyn Fn(&[[f64; 3]; 3]) -> f64| {
+            stress.iter().map(|s| f(s).abs()).fold(0.0, f64::max)
+        };
+        let fem_largest = |field: &str| {
+            grid.fields.get(field).map_or(f64::NAN, |rows| {
+                rows.iter()
+                    .flatten()
+                    .flatten()
+                    .fold(0.0, |m: f64, v| m.max(v.abs()))
+            })
+        };
+        sxx_max = [largest(&|s| s[0][0]), fem_largest("sxx")];
+        syy_max = [largest(&|s| s[1][1]), fem_largest("syy")];
+    }
+    HoleComparison {
+        points: count,
+        l2_displacement: (num / den).sqrt(),
+        l2_displacement_interior: (num_in / den_in).sqrt(),
+        max_displacement_error: max_u / fem_max_u - 1.0,
+        sxx_hole_top: sxx_top,
+        syy_hole_side: syy_side,
+        sxx_max,
+        syy_max,
+    }
+}

@@ -74,28 +74,35 @@ impl Pattern {
             }
         }
         let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
+        // A per-thread marker array (one flag per point) deduplicates in O(1).
         let rows: Vec<Vec<u32>> = (0..n)
             .into_par_iter()
-            .map(|q| {
-                let incoming = &in_bonds[in_offsets[q]..in_offsets[q + 1]];
-                let mut r: Vec<u32> = vec![q as u32];
-                match coupling {
-                    Coupling::Star => {
-                        r.extend(family(q));
-                        r.extend(incoming.iter().map(|&(o, _)| o));
-                    }
-                    Coupling::Family => {
-                        r.extend(family(q));
-                        for &(o, _) in incoming {
-                            r.push(o);
-                            r.extend(family(o as usize));
+            .map_init(
+                || vec![false; n],
+                |seen, q| {
+                    let incoming = &in_bonds[in_offsets[q]..in_offsets[q + 1]];
+                    let mut r: Vec<u32> = Vec::new();
+                    let mut push = |p: u32| {
+                        if !seen[p as usize] {
+                            seen[p as usize] = true;
+                            r.push(p);
+                        }
+                    };
+                    push(q as u32);
+                    family(q).for_each(&mut push);
+                    for &(o, _) in incoming {
+                        push(o);
+                        if coupling == Coupling::Family {
+                            family(o as usize).for_each(&mut push);
                         }
                     }
-                }
-                r.sort_unstable();
-                r.dedup();
-                r
-            })
+                    for &p in &r {
+                        seen[p as usize] = false;
+                    }
+                    r.sort_unstable();
+                    r
+                },
+            )
             .collect();
         let mut row_offsets = Vec::with_capacity(n + 1);
         row_offsets.push(0);

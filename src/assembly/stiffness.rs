@@ -53,6 +53,47 @@ impl Stiffness {
         SparseColMatRef::new(symbolic, &self.values)
     }
 
+    /// Position of the transposed entry of every stored entry (the pattern is
+    /// structurally symmetric: both models couple points symmetrically).
+    pub fn transpose_positions(pattern: &Pattern) -> Vec<usize> {
+        let n = pattern.col_ptr.len() - 1;
+        let mut next = pattern.col_ptr.clone();
+        // Walking columns in order visits each row's entries in column order, which is
+        // the order of that row's entries inside the transposed column.
+        let mut position = vec![0usize; pattern.nnz()];
+        for col in 0..n {
+            for k in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+                let row = pattern.row_idx[k];
+                position[k] = next[row];
+                next[row] += 1;
+            }
+        }
+        position
+    }
+
+    /// `(K + Kᵀ)/2` on the same pattern.
+    pub fn symmetric_part(&self, transpose: &[usize]) -> Stiffness {
+        let values = self
+            .values
+            .iter()
+            .enumerate()
+            .map(|(k, v)| 0.5 * (v + self.values[transpose[k]]))
+            .collect();
+        Stiffness { n: self.n, values }
+    }
+
+    /// `‖K − Kᵀ‖_F / ‖K‖_F`.
+    pub fn asymmetry(&self, transpose: &[usize]) -> f64 {
+        let skew: f64 = self
+            .values
+            .iter()
+            .enumerate()
+            .map(|(k, v)| (v - self.values[transpose[k]]).powi(2))
+            .sum();
+        let total: f64 = self.values.iter().map(|v| v * v).sum();
+        (skew / total).sqrt()
+    }
+
     /// `y = K x`.
     pub fn mul(&self, pattern: &Pattern, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];
@@ -77,41 +118,51 @@ pub fn fill<M: Model>(
     split_at_offsets(values, &offsets)
         .into_par_iter()
         .enumerate()
-        .for_each(|(q, out)| {
-            if out.is_empty() {
-                return;
-            }
-            let rows = pattern.rows(q);
-            let mut acc: Vec<Block> = vec![[[0.0; 3]; 3]; rows.len()];
-            let mut add = |p: usize, block: &Block| {
-                let k = rows
-                    .binary_search(&(p as u32))
-                    .expect("pattern holds every coupled point");
-                for r in 0..3 {
-                    for c in 0..3 {
-                        acc[k][r][c] += block[r][c];
-                    }
+        .for_each_init(
+            // Per thread: the slot of each row point in the current column (u32::MAX = none).
+            || vec![u32::MAX; disc.points.len()],
+            |slot, (q, out)| {
+                if out.is_empty() {
+                    return;
                 }
-            };
-            model.tangent_column(disc, q, Column::Owner, &mut add);
-            for &(owner, bond) in pattern.incoming(q) {
-                model.tangent_column(
-                    disc,
-                    owner as usize,
-                    Column::Neighbour(bond as usize),
-                    &mut add,
-                );
-            }
-            let mut pos = 0;
-            for c in (0..dofs.d).filter(|&c| dofs.free_index[3 * q + c] != PRESCRIBED) {
+                let rows = pattern.rows(q);
                 for (k, &p) in rows.iter().enumerate() {
-                    for r in
-                        (0..dofs.d).filter(|&r| dofs.free_index[3 * p as usize + r] != PRESCRIBED)
-                    {
-                        out[pos] = acc[k][r][c];
-                        pos += 1;
+                    slot[p as usize] = k as u32;
+                }
+                let mut acc: Vec<Block> = vec![[[0.0; 3]; 3]; rows.len()];
+                let d = dofs.d;
+                let mut add = |p: usize, block: &Block| {
+                    let k = slot[p] as usize;
+                    debug_assert!(k < rows.len(), "pattern holds every coupled point");
+                    for r in 0..d {
+                        for c in 0..d {
+                            acc[k][r][c] += block[r][c];
+                        }
+                    }
+                };
+                model.tangent_column(disc, q, Column::Owner, &mut add);
+                for &(owner, bond) in pattern.incoming(q) {
+                    model.tangent_column(
+                        disc,
+                        owner as usize,
+                        Column::Neighbour(bond as usize),
+                        &mut add,
+                    );
+                }
+                let mut pos = 0;
+                for c in (0..dofs.d).filter(|&c| dofs.free_index[3 * q + c] != PRESCRIBED) {
+                    for (k, &p) in rows.iter().enumerate() {
+                        for r in (0..dofs.d)
+                            .filter(|&r| dofs.free_index[3 * p as usize + r] != PRESCRIBED)
+                        {
+                            out[pos] = acc[k][r][c];
+                            pos += 1;
+                        }
                     }
                 }
-            }
-        });
+                for &p in rows {
+                    slot[p as usize] = u32::MAX;
+                }
+            },
+        );
 }

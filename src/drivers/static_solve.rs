@@ -57,6 +57,10 @@ pub struct Counts {
     pub nnz_l: Option<usize>,
     /// Pivot range of the Cholesky factor (None for LU).
     pub pivots: Option<PivotStats>,
+    /// `‖K − Kᵀ‖_F / ‖K‖_F` (0 for the bond-based model).
+    pub asymmetry: f64,
+    /// GMRES iterations and final residual, when GMRES was used.
+    pub gmres: Option<crate::solve::gmres::GmresReport>,
     /// Isolated points removed.
     pub removed_points: usize,
 }
@@ -203,26 +207,34 @@ pub fn solve_with<M: Model>(
     timings.assembly = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let matrix = stiffness.view(&pattern);
+    let transpose = Stiffness::transpose_positions(&pattern);
+    let asymmetry = stiffness.asymmetry(&transpose);
+    // GMRES factorises the symmetric part; the other methods K itself.
+    let symmetric =
+        (scene.solver == SolverMethod::Gmres).then(|| stiffness.symmetric_part(&transpose));
+    let factored = symmetric.as_ref().unwrap_or(&stiffness).view(&pattern);
     let mut solver = match scene.solver {
-        SolverMethod::Cholesky => {
-            let chol = Cholesky::analyse(matrix)?;
+        SolverMethod::Cholesky | SolverMethod::Gmres => {
+            let chol = Cholesky::analyse(factored)?;
             crate::solve::check_memory(chol.factor_bytes())?;
-            LinearSolver::Cholesky(chol)
+            if scene.solver == SolverMethod::Gmres {
+                LinearSolver::Gmres(chol)
+            } else {
+                LinearSolver::Cholesky(chol)
+            }
         }
-        SolverMethod::Lu => LinearSolver::Lu(SparseLu::analyse(matrix)?),
+        SolverMethod::Lu => LinearSolver::Lu(SparseLu::analyse(factored)?),
     };
     timings.symbolic_factorization = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
     solver
-        .factorize(matrix)
+        .factorize(factored)
         .map_err(|e| factor_error(e, &dofs, &disc))?;
     timings.numeric_factorization = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let mut x = rhs.clone();
-    solver.solve_in_place(&mut x);
+    let (x, iterative) = solver.solve(&|v: &[f64]| stiffness.mul(&pattern, v), &rhs);
     if x.iter().any(|v| !v.is_finite()) {
         return Err(NumericalError::NonFinite {
             what: "the displacement solution".into(),
@@ -282,6 +294,8 @@ pub fn solve_with<M: Model>(
         nnz_k: pattern.nnz(),
         nnz_l: solver.nnz_factor(),
         pivots: solver.pivot_stats(),
+        asymmetry,
+        gmres: iterative,
         removed_points: disc.removed_isolated,
     };
     Ok(StaticSolution {

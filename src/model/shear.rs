@@ -264,7 +264,8 @@ impl Model for Shear {
         add: &mut dyn FnMut(usize, &Block),
     ) {
         let o = &self.owners[i];
-        let df = self.d as f64;
+        let d = self.d;
+        let df = d as f64;
         let p = &disc.points;
         let bonds = &disc.bonds;
         // The column's "a" and "b" vectors: a_k, b_k for a neighbour, minus their sums for the owner.
@@ -296,24 +297,17 @@ impl Model for Shear {
                 None => 1.0,
             };
             // A_jk (neighbour column) or Σ_k A_jk (owner column), then the sign of ∂/∂u.
-            let mut a: Block = [[0.0; 3]; 3];
-            for r in 0..3 {
-                for c in 0..3 {
-                    let delta = f64::from(r == c);
-                    a[r][c] = sign
-                        * pre
-                        * ((o.kappa - 2.0 * o.mu / df) * xi[r] * ak[c]
-                            + 2.0 * o.mu * diagonal * delta
-                            - o.mu * (bx * delta - bk[r] * xi[c]));
-                }
-            }
             // K = −∂F/∂u: the owner feels +f V_i V_j ν, the neighbour −f V_i V_j ν.
-            let weight = p.volume[i] * p.volume[j] * bonds.volume_factor[b];
-            let to_neighbour: Block =
-                std::array::from_fn(|r| std::array::from_fn(|c| weight * a[r][c]));
-            for r in 0..3 {
-                for c in 0..3 {
-                    owner_block[r][c] -= to_neighbour[r][c];
+            let weight = sign * pre * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+            let mut to_neighbour: Block = [[0.0; 3]; 3];
+            for r in 0..d {
+                for c in 0..d {
+                    let delta = f64::from(r == c);
+                    let a = (o.kappa - 2.0 * o.mu / df) * xi[r] * ak[c]
+                        + 2.0 * o.mu * diagonal * delta
+                        - o.mu * (bx * delta - bk[r] * xi[c]);
+                    to_neighbour[r][c] = weight * a;
+                    owner_block[r][c] -= weight * a;
                 }
             }
             add(j, &to_neighbour);

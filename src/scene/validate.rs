@@ -406,7 +406,7 @@ impl Scene {
             loads,
             solver: spec.solver.method.unwrap_or(match spec.model.kind {
                 ModelKind::BondBased => SolverMethod::Cholesky,
-                ModelKind::Shear => SolverMethod::Lu,
+                ModelKind::Shear => SolverMethod::Gmres,
             }),
             output,
         };

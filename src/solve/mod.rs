@@ -6,6 +6,8 @@
 //! 0-based on the supernodal path; it is mapped back through the fill-reducing
 //! permutation here.
 
+pub mod gmres;
+
 use crate::error::NumericalError;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::{LltError as DenseLltError, LltRegularization};
@@ -259,13 +261,21 @@ impl SparseLu {
     }
 }
 
-/// Either solver behind one interface.
+/// The linear solvers behind one interface.
 pub enum LinearSolver {
     /// Sparse Cholesky.
     Cholesky(Cholesky),
     /// Sparse LU.
     Lu(SparseLu),
+    /// GMRES preconditioned by the Cholesky factor of the symmetric part
+    /// (factorised from `(K + Kᵀ)/2`, which the caller passes to `factorize`).
+    Gmres(Cholesky),
 }
+
+/// GMRES settings: relative tolerance, restart length and iteration cap.
+pub const GMRES_TOLERANCE: f64 = 1e-12;
+const GMRES_RESTART: usize = 60;
+const GMRES_MAX_ITERATIONS: usize = 600;
 
 impl LinearSolver {
     /// Numeric factorisation.
@@ -274,15 +284,44 @@ impl LinearSolver {
         matrix: SparseColMatRef<'_, usize, f64>,
     ) -> Result<(), FactorError> {
         match self {
-            LinearSolver::Cholesky(s) => s.factorize(matrix),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.factorize(matrix),
             LinearSolver::Lu(s) => s.factorize(matrix),
+        }
+    }
+
+    /// Solves `K x = b`; `apply(v) = K v` (used by GMRES). Returns the GMRES
+    /// report when iterating.
+    pub fn solve(
+        &self,
+        apply: &dyn Fn(&[f64]) -> Vec<f64>,
+        b: &[f64],
+    ) -> (Vec<f64>, Option<gmres::GmresReport>) {
+        match self {
+            LinearSolver::Gmres(chol) => {
+                let mut x = vec![0.0; b.len()];
+                let report = gmres::gmres(
+                    apply,
+                    &|v: &mut [f64]| chol.solve_in_place(v),
+                    b,
+                    &mut x,
+                    GMRES_TOLERANCE,
+                    GMRES_RESTART,
+                    GMRES_MAX_ITERATIONS,
+                );
+                (x, Some(report))
+            }
+            _ => {
+                let mut x = b.to_vec();
+                self.solve_in_place(&mut x);
+                (x, None)
+            }
         }
     }
 
     /// Solves in place.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         match self {
-            LinearSolver::Cholesky(s) => s.solve_in_place(b),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.solve_in_place(b),
             LinearSolver::Lu(s) => s.solve_in_place(b),
         }
     }
@@ -290,7 +329,7 @@ impl LinearSolver {
     /// Pivot statistics of the last Cholesky factorisation.
     pub fn pivot_stats(&self) -> Option<PivotStats> {
         match self {
-            LinearSolver::Cholesky(s) => s.pivot_stats,
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.pivot_stats,
             LinearSolver::Lu(_) => None,
         }
     }
@@ -298,7 +337,7 @@ impl LinearSolver {
     /// Stored entries of the factor(s), when known.
     pub fn nnz_factor(&self) -> Option<usize> {
         match self {
-            LinearSolver::Cholesky(s) => Some(s.nnz_l()),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => Some(s.nnz_l()),
             LinearSolver::Lu(_) => None,
         }
     }
