@@ -20,14 +20,15 @@
 //! * the relative error of u_x at the point nearest (1, 0.5);
 //! * wall time per phase and the peak resident memory of each case.
 //!
-//! It prints a Markdown table (a full run also writes it to `results/table.md`) and writes the
-//! profiles as CSV files to `validation/plate_tension/results/`, which
-//! `validation/plate_tension/plot.py` turns into `plate_tension.png`.
+//! It prints a Markdown table (a full run also writes it to `results/table.md`)
+//! and writes the profiles as CSV files to `validation/plate_tension/results/`,
+//! which `validation/plate_tension/plot.py` turns into `plate_tension.png`.
 //!
 //! ```text
 //! cargo run --release --example plate_tension
 //! cargo run --release --example plate_tension -- shear 5          # one model, some n
 //! cargo run --release --example plate_tension -- --layers 5 bond_based 5
+//! cargo run --release --example plate_tension -- --field /tmp/fields   # also every point's u
 //! ```
 //!
 //! Run it from the repository root (the paths are relative).
@@ -158,11 +159,44 @@ fn profile(s: &StaticSolution, fem: &FemReference, axis: usize, at: f64, comp: u
     Profile { rows }
 }
 
+/// Every point: x, y, u_x, u_y and the FEM u_x, u_y at its position (empty outside the plate).
+fn write_field(s: &StaticSolution, fem: &FemReference, path: &Path) -> std::io::Result<()> {
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)?;
+    }
+    let p = &s.disc.points;
+    let mut out = String::from("x,y,spacing,horizon,u_x,u_y,u_x_fem,u_y_fem\n");
+    for i in 0..p.len() {
+        let [x, y, _] = p.x[i];
+        let f = |name: &str| {
+            fem.grid
+                .interpolate(name, x, y)
+                .map_or(String::new(), |v| format!("{v:.9e}"))
+        };
+        let _ = writeln!(
+            out,
+            "{x:.6},{y:.6},{},{},{:.9e},{:.9e},{},{}",
+            p.spacing[i],
+            p.horizon[i],
+            s.u[i][0],
+            s.u[i][1],
+            f("ux"),
+            f("uy")
+        );
+    }
+    std::fs::write(path, out)
+}
+
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     let mut layers = 3usize;
     if let Some(k) = args.iter().position(|a| a == "--layers") {
         layers = args.get(k + 1).ok_or("--layers needs a value")?.parse()?;
+        args.drain(k..k + 2);
+    }
+    let mut field_dir: Option<std::path::PathBuf> = None;
+    if let Some(k) = args.iter().position(|a| a == "--field") {
+        field_dir = Some(args.get(k + 1).ok_or("--field needs a directory")?.into());
         args.drain(k..k + 2);
     }
     let mut models: Vec<&str> = ["bond_based", "shear"]
@@ -253,6 +287,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 &Path::new(RESULTS).join(format!("{name}_uy_x0.5.csv")),
                 "x,y,u_y,u_y_fem",
             )?;
+
+            if let Some(dir) = &field_dir {
+                write_field(&s, &fem, &dir.join(format!("{name}_field.csv")))?;
+            }
 
             let tm = &s.timings;
             let row = format!(

@@ -82,6 +82,22 @@ impl Stiffness {
         Stiffness { n: self.n, values }
     }
 
+    /// The entries of this matrix (on `pattern`) at the positions of `sub`, a
+    /// pattern whose columns hold subsets of `pattern`'s rows.
+    pub fn restrict(&self, pattern: &Pattern, sub: &Pattern) -> Stiffness {
+        let mut values = vec![0.0; sub.nnz()];
+        for col in 0..self.n {
+            let mut k = pattern.col_ptr[col];
+            for s in sub.col_ptr[col]..sub.col_ptr[col + 1] {
+                while pattern.row_idx[k] < sub.row_idx[s] {
+                    k += 1;
+                }
+                values[s] = self.values[k];
+            }
+        }
+        Stiffness { n: self.n, values }
+    }
+
     /// `‖K − Kᵀ‖_F / ‖K‖_F`.
     pub fn asymmetry(&self, transpose: &[usize]) -> f64 {
         let skew: f64 = self

@@ -12,11 +12,15 @@ use crate::discretization::{self, Discretization};
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
-use crate::model::Model;
+use crate::model::{Coupling, Model};
 use crate::scene::{ModelKind, Scene, SolverMethod};
 use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu};
 use serde::Serialize;
 use std::time::Instant;
+
+/// GMRES iterations allowed with the bond-based preconditioner before switching
+/// to the symmetric part of the shear tangent.
+const PRECONDITIONER_BUDGET: usize = 120;
 
 /// Largest relative residual accepted from a direct solve.
 pub const RESIDUAL_THRESHOLD: f64 = 1e-8;
@@ -57,7 +61,7 @@ pub struct Counts {
     pub nnz_l: Option<usize>,
     /// Pivot range of the Cholesky factor (None for LU).
     pub pivots: Option<PivotStats>,
-    /// `‖K − Kᵀ‖_F / ‖K‖_F` (0 for the bond-based model).
+    /// `‖K − Kᵀ‖_F / ‖K‖_F` (round-off for the bond-based model).
     pub asymmetry: f64,
     /// GMRES iterations and final residual, when GMRES was used.
     pub gmres: Option<crate::solve::gmres::GmresReport>,
@@ -209,16 +213,36 @@ pub fn solve_with<M: Model>(
     let t = Instant::now();
     let transpose = Stiffness::transpose_positions(&pattern);
     let asymmetry = stiffness.asymmetry(&transpose);
-    // GMRES factorises the symmetric part; the other methods K itself.
-    let symmetric =
-        (scene.solver == SolverMethod::Gmres).then(|| stiffness.symmetric_part(&transpose));
-    let factored = symmetric.as_ref().unwrap_or(&stiffness).view(&pattern);
+    // GMRES factorises the symmetric part restricted to bonded pairs (the star
+    // pattern); the other methods factorise K itself.
+    let star = (scene.solver == SolverMethod::Gmres && model.coupling() == Coupling::Family)
+        .then(|| Pattern::new(&disc, &dofs, Coupling::Star));
+    let symmetric = (scene.solver == SolverMethod::Gmres).then(|| match &star {
+        Some(star) => {
+            let bb = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+            Stiffness::assemble(&bb, &disc, &dofs, star)
+        }
+        None => stiffness.symmetric_part(&transpose),
+    });
+    let factored_pattern = star.as_ref().unwrap_or(&pattern);
+    let factored = symmetric
+        .as_ref()
+        .unwrap_or(&stiffness)
+        .view(factored_pattern);
     let mut solver = match scene.solver {
         SolverMethod::Cholesky | SolverMethod::Gmres => {
             let chol = Cholesky::analyse(factored)?;
             crate::solve::check_memory(chol.factor_bytes())?;
             if scene.solver == SolverMethod::Gmres {
-                LinearSolver::Gmres(chol)
+                // The cheap bond-based preconditioner gets a short budget (see below).
+                LinearSolver::Gmres(
+                    chol,
+                    if star.is_some() {
+                        PRECONDITIONER_BUDGET
+                    } else {
+                        600
+                    },
+                )
             } else {
                 LinearSolver::Cholesky(chol)
             }
@@ -234,7 +258,34 @@ pub fn solve_with<M: Model>(
     timings.numeric_factorization = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
-    let (x, iterative) = solver.solve(&|v: &[f64]| stiffness.mul(&pattern, v), &rhs);
+    let apply = |v: &[f64]| stiffness.mul(&pattern, v);
+    let (mut x, mut iterative) = solver.solve(&apply, &rhs);
+    if let (Some(first), Some(_)) = (iterative, &star) {
+        if !first.converged {
+            // Near incompressibility the bond-based preconditioner (which has no
+            // Poisson ratio) stalls: continue with the full symmetric part.
+            eprintln!(
+                "note: GMRES with the bond-based preconditioner stopped at residual {:.1e} after {} iterations; \
+                 continuing with the Cholesky factor of the symmetric part",
+                first.relative_residual, first.iterations
+            );
+            let full = stiffness.symmetric_part(&transpose);
+            let mut chol = Cholesky::analyse(full.view(&pattern))?;
+            crate::solve::check_memory(chol.factor_bytes())?;
+            chol.factorize(full.view(&pattern))
+                .map_err(|e| factor_error(e, &dofs, &disc))?;
+            let fallback = LinearSolver::Gmres(chol, 600);
+            let kx = apply(&x);
+            let r: Vec<f64> = rhs.iter().zip(&kx).map(|(b, k)| b - k).collect();
+            let (dx, second) = fallback.solve(&apply, &r);
+            x.iter_mut().zip(&dx).for_each(|(xi, di)| *xi += di);
+            iterative = second.map(|s| crate::solve::gmres::GmresReport {
+                iterations: first.iterations + s.iterations,
+                ..s
+            });
+            solver = fallback;
+        }
+    }
     if x.iter().any(|v| !v.is_finite()) {
         return Err(NumericalError::NonFinite {
             what: "the displacement solution".into(),

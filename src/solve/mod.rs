@@ -267,15 +267,14 @@ pub enum LinearSolver {
     Cholesky(Cholesky),
     /// Sparse LU.
     Lu(SparseLu),
-    /// GMRES preconditioned by the Cholesky factor of the symmetric part
-    /// (factorised from `(K + Kᵀ)/2`, which the caller passes to `factorize`).
-    Gmres(Cholesky),
+    /// GMRES preconditioned by the Cholesky factor of a symmetric approximation of
+    /// `K` (which the caller passes to `factorize`), with an iteration cap.
+    Gmres(Cholesky, usize),
 }
 
-/// GMRES settings: relative tolerance, restart length and iteration cap.
+/// GMRES settings: relative tolerance and restart length.
 pub const GMRES_TOLERANCE: f64 = 1e-12;
 const GMRES_RESTART: usize = 60;
-const GMRES_MAX_ITERATIONS: usize = 600;
 
 impl LinearSolver {
     /// Numeric factorisation.
@@ -284,7 +283,7 @@ impl LinearSolver {
         matrix: SparseColMatRef<'_, usize, f64>,
     ) -> Result<(), FactorError> {
         match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.factorize(matrix),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.factorize(matrix),
             LinearSolver::Lu(s) => s.factorize(matrix),
         }
     }
@@ -297,7 +296,7 @@ impl LinearSolver {
         b: &[f64],
     ) -> (Vec<f64>, Option<gmres::GmresReport>) {
         match self {
-            LinearSolver::Gmres(chol) => {
+            LinearSolver::Gmres(chol, max_iterations) => {
                 let mut x = vec![0.0; b.len()];
                 let report = gmres::gmres(
                     apply,
@@ -306,7 +305,7 @@ impl LinearSolver {
                     &mut x,
                     GMRES_TOLERANCE,
                     GMRES_RESTART,
-                    GMRES_MAX_ITERATIONS,
+                    *max_iterations,
                 );
                 (x, Some(report))
             }
@@ -321,7 +320,7 @@ impl LinearSolver {
     /// Solves in place.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.solve_in_place(b),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.solve_in_place(b),
             LinearSolver::Lu(s) => s.solve_in_place(b),
         }
     }
@@ -329,7 +328,7 @@ impl LinearSolver {
     /// Pivot statistics of the last Cholesky factorisation.
     pub fn pivot_stats(&self) -> Option<PivotStats> {
         match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => s.pivot_stats,
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.pivot_stats,
             LinearSolver::Lu(_) => None,
         }
     }
@@ -337,7 +336,7 @@ impl LinearSolver {
     /// Stored entries of the factor(s), when known.
     pub fn nnz_factor(&self) -> Option<usize> {
         match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s) => Some(s.nnz_l()),
+            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => Some(s.nnz_l()),
             LinearSolver::Lu(_) => None,
         }
     }
