@@ -53,11 +53,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 ErrorStats::of(interior, BAR_DISPLACEMENT),
                 ErrorStats::of(near, BAR_DISPLACEMENT),
             );
-            let r = s
-                .reactions
-                .iter()
-                .find(|r| r.name == "right")
-                .map_or(f64::NAN, |r| r.force[0]);
+            let r = s.reaction("right").map_or(f64::NAN, |r| r[0]);
             let r_exact = case.series_reaction(1.0);
             println!(
                 "| {dl} / {dr} | {} | {:.3} % | {:.3} % | {:.3} % | {:+.3} % | {secs:.4} |",
@@ -109,11 +105,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             ErrorStats::of(centre, BAR_DISPLACEMENT),
             ErrorStats::of(all, BAR_DISPLACEMENT),
         );
-        let reaction = s
-            .reactions
-            .iter()
-            .find(|r| r.name == "right")
-            .map_or(f64::NAN, |r| r.force[0]);
+        let reaction = s.reaction("right").map_or(f64::NAN, |r| r[0]);
         let t = &s.timings;
         println!(
             "| {r} | {:.5} / {:.5} | {} | {:.3} % | {:.3} % | {:.3} % | {:.3} % | {reaction:.5e} | {:+.2} % | {:.3} | {:.3} | {:.3} | {secs:.3} |",

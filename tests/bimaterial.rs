@@ -21,11 +21,8 @@ fn bar_errors(case: &Bimaterial) -> (ErrorStats, f64) {
         .map(|(x, u)| (u, case.series_displacement(x)))
         .collect();
     let reaction = s
-        .reactions
-        .iter()
-        .find(|r| r.name == "right")
-        .unwrap()
-        .force[0];
+        .reaction("right")
+        .expect("the right grip is a constrained set")[0];
     (
         ErrorStats::of(pairs, BAR_DISPLACEMENT),
         reaction / case.series_reaction(1.0) - 1.0,
@@ -105,11 +102,8 @@ fn strip(refinement: f64) -> (ErrorStats, f64) {
         })
         .collect();
     let reaction = s
-        .reactions
-        .iter()
-        .find(|r| r.name == "right")
-        .unwrap()
-        .force[0];
+        .reaction("right")
+        .expect("the right grip is a constrained set")[0];
     (
         ErrorStats::of(centre, BAR_DISPLACEMENT),
         reaction / reference.reaction_x.unwrap() - 1.0,

@@ -137,15 +137,12 @@ fn run_default() -> Result<(), Error> {
         100.0 * stats.max_relative,
         100.0 * stats.rms_relative
     );
-    if let (Some(fem), Some(r)) = (
-        reference.reaction_x,
-        s.reactions.iter().find(|r| r.name == "right"),
-    ) {
+    if let (Some(fem), Some(r)) = (reference.reaction_x, s.reaction("right")) {
         println!(
             "  reaction at the right grip: dhpd {:.6e} N, FEM {:.6e} N ({:+.2} %)",
-            r.force[0],
+            r[0],
             fem,
-            100.0 * (r.force[0] / fem - 1.0)
+            100.0 * (r[0] / fem - 1.0)
         );
     }
     Ok(())

@@ -114,6 +114,16 @@ pub struct StaticSolution {
     pub system: LinearSystem,
 }
 
+impl StaticSolution {
+    /// The reaction force of the constrained set `name`, if there is one.
+    pub fn reaction(&self, name: &str) -> Option<[f64; 3]> {
+        self.reactions
+            .iter()
+            .find(|r| r.name == name)
+            .map(|r| r.force)
+    }
+}
+
 /// A discretised scene, ready to solve (lets callers check output requests
 /// against the points before any numerics).
 pub struct Prepared {
