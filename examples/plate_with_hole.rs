@@ -6,6 +6,7 @@
 //! ```text
 //! cargo run --release --example plate_with_hole                       # uniaxial, Δx 0.02 0.01 0.005, m 2.015 3.015 4.015
 //! cargo run --release --example plate_with_hole -- tension_compression m=3.015 0.02 0.01 0.005
+//! cargo run --release --example plate_with_hole -- gradient m=3.015      # shear model with the surface correction
 //! ```
 //!
 //! Errors: relative L2 of u over all compared points and over points farther than
@@ -19,6 +20,7 @@ use std::fmt::Write;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
+    let gradient = args.iter().any(|a| a == "gradient");
     let load = if args.iter().any(|a| a == "tension_compression") {
         HoleLoad::TensionCompression
     } else {
@@ -59,7 +61,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                     load,
                 };
                 let t = std::time::Instant::now();
-                let s = dhpd::drivers::static_solve::solve(&case.scene())?;
+                let mut scene = case.scene();
+                scene.gradient_dilatation = gradient;
+                let s = dhpd::drivers::static_solve::solve(&scene)?;
                 let total = t.elapsed().as_secs_f64();
                 let c = compare_plate(&s, &reference);
                 let tm = &s.timings;
@@ -90,6 +94,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let out = std::path::Path::new("validation/plate_with_hole/results");
     std::fs::create_dir_all(out)?;
-    std::fs::write(out.join(format!("study_{tag}.csv")), csv)?;
+    let suffix = if gradient { "_gradient" } else { "" };
+    std::fs::write(out.join(format!("study_{tag}{suffix}.csv")), csv)?;
     Ok(())
 }

@@ -225,13 +225,27 @@ contract_tests!(
 );
 
 fn shear(scene: &Scene, disc: &Discretization) -> Shear {
-    Shear::new(disc, scene.dimension, &scene.materials).expect("shape tensors are regular")
+    Shear::new(
+        disc,
+        scene.dimension,
+        &scene.materials,
+        scene.gradient_dilatation,
+    )
+    .expect("shape tensors are regular")
 }
 
 contract_tests!(
     shear_model,
     shear,
     "kind = \"shear\"",
+    symmetric = false,
+    settings = ["plane_stress", "plane_strain", "3d"]
+);
+
+contract_tests!(
+    shear_model_gradient_dilatation,
+    shear,
+    "kind = \"shear\"\ndilatation = \"gradient\"",
     symmetric = false,
     settings = ["plane_stress", "plane_strain", "3d"]
 );

@@ -179,7 +179,12 @@ impl Prepared {
                 solve_with(&model, scene, self)
             }
             ModelKind::Shear => {
-                let model = Shear::new(&self.disc, scene.dimension, &scene.materials)?;
+                let model = Shear::new(
+                    &self.disc,
+                    scene.dimension,
+                    &scene.materials,
+                    scene.gradient_dilatation,
+                )?;
                 solve_with(&model, scene, self)
             }
         }

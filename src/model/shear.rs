@@ -30,6 +30,14 @@
 //! pair of `{i} ∪ H_i`, so the stiffness links neighbours of neighbours
 //! ([`Coupling::Family`]) and is not symmetric in general.
 //!
+//! **Surface correction** (optional, `model.dilatation = "gradient"`): the
+//! weighted dilatation `θ = (d/m) Σ w η_r·ξ_r` equals `tr ε` under a homogeneous
+//! strain only when `K_i = (m_i/d) I`, i.e. for a full, symmetric family. At a free
+//! surface it does not, which softens or stiffens the rim. The corrected form
+//! `θ = Σ w η_r·(R K⁻¹ ξ)` (linearised: `θ = Σ b_k·η_k = tr G`) is identical in
+//! the interior and exact for homogeneous deformation everywhere; in `A_jk` it
+//! replaces `a_k` by `b_k`.
+//!
 //! **Stress** (001 Eq. 32, with the sign of formulation Sec. 4):
 //! `σ_i = (m_i/d) Σ_j f_ij ⊗ ξ_r V_j ν_ij K_i⁻¹`; under a homogeneous strain with a
 //! full horizon it returns Hooke's law exactly.
@@ -76,15 +84,19 @@ struct Owner {
 pub struct Shear {
     d: usize,
     owners: Vec<Owner>,
+    gradient_dilatation: bool,
 }
 
 impl Shear {
     /// Computes every owner's weighted volume and inverse shape tensor. An owner
     /// whose intact bonds do not span the space is an error naming the point.
+    /// `gradient_dilatation` selects `θ = tr(K⁻¹ Σ w ξ ⊗ η_r)` (the surface
+    /// correction, module docs) instead of the paper's weighted sum.
     pub fn new(
         disc: &Discretization,
         dim: Dimension,
         materials: &[Material],
+        gradient_dilatation: bool,
     ) -> Result<Self, NumericalError> {
         use rayon::prelude::*;
         let d = disc.d;
@@ -98,7 +110,11 @@ impl Shear {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self { d, owners })
+        Ok(Self {
+            d,
+            owners,
+            gradient_dilatation,
+        })
     }
 
     /// Stress at `owner` for displacements `u` (001 Eq. 32); `linear` selects the
@@ -178,7 +194,11 @@ impl Shear {
                         g[r][c] += eta[r] * w * bk[c];
                     }
                 }
-                theta += df / o.m * w * dot(&xi, &eta);
+                theta += if self.gradient_dilatation {
+                    w * dot(&bk, &eta)
+                } else {
+                    df / o.m * w * dot(&xi, &eta)
+                };
             }
             let wmat: Mat3 =
                 std::array::from_fn(|r| std::array::from_fn(|c| 0.5 * (g[r][c] - g[c][r])));
@@ -215,7 +235,11 @@ impl Shear {
                 let w = p.volume[j] * bonds.volume_factor[b] / len2;
                 let xr = mat_vec(&rotation, &xi);
                 let er: [f64; 3] = std::array::from_fn(|a| xi[a] + eta[a] - xr[a]);
-                theta += df / o.m * w * dot(&er, &xr);
+                theta += if self.gradient_dilatation {
+                    w * dot(&er, &mat_vec(&rotation, &mat_vec(&o.k_inv, &xi)))
+                } else {
+                    df / o.m * w * dot(&er, &xr)
+                };
             }
             for b in family {
                 if !bonds.intact[b] {
@@ -278,9 +302,23 @@ impl Model for Shear {
                 let xi = sub(&p.x[j], &p.x[i]);
                 let w = p.volume[j] * bonds.volume_factor[k] / dot(&xi, &xi);
                 let b = mat_vec(&o.k_inv, &xi);
-                (xi.map(|x| df / o.m * w * x), b.map(|x| w * x), Some(k), 1.0)
+                let a = if self.gradient_dilatation {
+                    b.map(|x| w * x)
+                } else {
+                    xi.map(|x| df / o.m * w * x)
+                };
+                (a, b.map(|x| w * x), Some(k), 1.0)
             }
-            Column::Owner => (o.a_sum, o.b_sum, None, -1.0),
+            Column::Owner => (
+                if self.gradient_dilatation {
+                    o.b_sum
+                } else {
+                    o.a_sum
+                },
+                o.b_sum,
+                None,
+                -1.0,
+            ),
         };
         let mut owner_block = [[0.0; 3]; 3];
         for b in bonds.owned_by(i) {

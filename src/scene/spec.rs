@@ -63,6 +63,10 @@ pub struct ModelSpec {
     /// `"constant"`: every point takes the largest horizon of the body (baseline).
     #[serde(default)]
     pub horizons: HorizonMode,
+    /// Shear model only: `"weighted"` (001 Eq. 15, default) or `"gradient"`
+    /// (the surface correction: θ from the shape-tensor gradient, exact for
+    /// homogeneous deformation at free surfaces too).
+    pub dilatation: Option<Dilatation>,
     /// Bond-based only: accept a Poisson ratio the model cannot represent
     /// (the micromodulus then matches the bulk modulus). Default false.
     #[serde(default)]
@@ -78,6 +82,17 @@ pub enum ModelKind {
     BondBased,
     /// Shear-deformation DH-PD of Ren, Zhuang & Rabczuk (formulation Sec. 4): any ν, 2D or 3D.
     Shear,
+}
+
+/// How the shear model computes an owner's dilatation θ.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Dilatation {
+    /// `θ = (d/m) Σ w η_r·ξ_r` (001 Eq. 15).
+    #[default]
+    Weighted,
+    /// `θ = Σ w η_r·(R K⁻¹ ξ)`: the surface correction.
+    Gradient,
 }
 
 /// Spatial setting.

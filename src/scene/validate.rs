@@ -184,6 +184,8 @@ pub struct Scene {
     pub horizons: HorizonMode,
     /// Partial-volume rule.
     pub volume_correction: VolumeCorrection,
+    /// Shear model: dilatation from the shape-tensor gradient (surface correction).
+    pub gradient_dilatation: bool,
     /// Isolated-point policy.
     pub isolated_points: IsolatedPolicy,
     /// Materials, indexed by regions and points.
@@ -396,6 +398,7 @@ impl Scene {
             thickness,
             horizons: spec.model.horizons,
             volume_correction: spec.discretization.volume_correction,
+            gradient_dilatation: spec.model.dilatation == Some(Dilatation::Gradient),
             isolated_points: spec.discretization.isolated_points,
             materials,
             regions,
@@ -414,6 +417,12 @@ impl Scene {
             return Err(InputError::new(
                 "output.stress",
                 "stress recovery is defined for the shear model (model.kind = \"shear\")",
+            ));
+        }
+        if spec.model.dilatation.is_some() && scene.model != ModelKind::Shear {
+            return Err(InputError::new(
+                "model.dilatation",
+                "applies to the shear model only (model.kind = \"shear\")",
             ));
         }
         if scene.model == ModelKind::Shear && d == 1 {
