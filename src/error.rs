@@ -49,7 +49,8 @@ pub enum NumericalError {
     #[error(
         "the stiffness matrix is singular to round-off at point {point} (x = {position:?}), \
          component {component} (pivot ratio {ratio:.1e}): that point can move without resistance \
-         (a mechanism: too few bonds, or bonds all along one line)"
+         (a mechanism: too few bonds or bonds all along one line; or a stiff part held only \
+         through a far softer one, stiffness contrast above about 1e10)"
     )]
     NearlySingular {
         point: usize,
