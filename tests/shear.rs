@@ -52,6 +52,35 @@ fn hooke(dimension: &str, nu: f64, strain: &[[f64; 3]; 3], d: usize) -> [[f64; 3
     })
 }
 
+/// The shear model of a scene (its shape tensors are regular in these tests).
+fn shear_model(scene: &Scene, disc: &Discretization) -> Shear {
+    Shear::new(
+        disc,
+        scene.dimension,
+        &scene.materials,
+        scene.gradient_dilatation,
+    )
+    .unwrap()
+}
+
+/// `u = H x` on the first `d` components.
+fn affine(disc: &Discretization, h: &[[f64; 3]; 3]) -> Vec<[f64; 3]> {
+    let d = disc.d;
+    disc.points
+        .x
+        .iter()
+        .map(|x| {
+            std::array::from_fn(|a| {
+                if a < d {
+                    (0..d).map(|b| h[a][b] * x[b]).sum()
+                } else {
+                    0.0
+                }
+            })
+        })
+        .collect()
+}
+
 /// Points whose horizon (plus the bond reach) stays inside the body.
 fn interior(disc: &Discretization, scene: &Scene) -> Vec<usize> {
     let pv = PartialVolume {
@@ -100,27 +129,8 @@ fn patch_test_exact_hooke_stress() {
             let scene = plate(dimension, nu, spacing, size, dilatation);
             let disc = disc(&scene);
             let d = disc.d;
-            let model = Shear::new(
-                &disc,
-                scene.dimension,
-                &scene.materials,
-                scene.gradient_dilatation,
-            )
-            .unwrap();
-            let u: Vec<[f64; 3]> = disc
-                .points
-                .x
-                .iter()
-                .map(|x| {
-                    std::array::from_fn(|a| {
-                        if a < d {
-                            (0..d).map(|b| gradient[a][b] * x[b]).sum()
-                        } else {
-                            0.0
-                        }
-                    })
-                })
-                .collect();
+            let model = shear_model(&scene, &disc);
+            let u = affine(&disc, &gradient);
             let strain: [[f64; 3]; 3] = std::array::from_fn(|r| {
                 std::array::from_fn(|c| 0.5 * (gradient[r][c] + gradient[c][r]))
             });
@@ -172,13 +182,7 @@ fn rigid_rotation_gives_zero_stress() {
         for dilatation in ["weighted", "gradient"] {
             let scene = plate(dimension, 1.0 / 3.0, spacing, size, dilatation);
             let disc = disc(&scene);
-            let model = Shear::new(
-                &disc,
-                scene.dimension,
-                &scene.materials,
-                scene.gradient_dilatation,
-            )
-            .unwrap();
+            let model = shear_model(&scene, &disc);
             let axis = if dimension == "3d" {
                 [1.0 / 3f64.sqrt(); 3]
             } else {
@@ -260,19 +264,8 @@ fn gradient_dilatation_is_exact_at_boundaries() {
     for (k, dilatation) in ["gradient", "weighted"].into_iter().enumerate() {
         let scene = plate("plane_stress", 0.3, 0.1, [1.0, 1.0, 0.0], dilatation);
         let disc = disc(&scene);
-        let model = Shear::new(
-            &disc,
-            scene.dimension,
-            &scene.materials,
-            scene.gradient_dilatation,
-        )
-        .unwrap();
-        let u: Vec<[f64; 3]> = disc
-            .points
-            .x
-            .iter()
-            .map(|x| std::array::from_fn(|a| (0..2).map(|b| strain[a][b] * x[b]).sum()))
-            .collect();
+        let model = shear_model(&scene, &disc);
+        let u = affine(&disc, &strain);
         let expected = hooke("plane_stress", 0.3, &strain, 2);
         let scale = expected
             .iter()
