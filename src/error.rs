@@ -90,9 +90,18 @@ pub enum NumericalError {
         position: [f64; 3],
         motions: String,
     },
-    /// The solution failed its residual check.
-    #[error("solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e}")]
-    ResidualTooLarge { residual: f64, threshold: f64 },
+    /// The solution failed its residual check, after iterative refinement.
+    #[error(
+        "solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e} after \
+         {refinement_steps} step(s) of iterative refinement; the system is too ill-conditioned \
+         for double precision (a near-mechanism or an extreme stiffness contrast), or the \
+         factorisation lost accuracy (try solver.method = \"lu\")"
+    )]
+    ResidualTooLarge {
+        residual: f64,
+        threshold: f64,
+        refinement_steps: usize,
+    },
     /// A non-finite number appeared in a result.
     #[error("non-finite value in {what}")]
     NonFinite { what: String },
@@ -101,18 +110,49 @@ pub enum NumericalError {
     NothingToSolve,
     /// The factorisation would not fit in memory (known after the symbolic analysis).
     #[error(
-        "the sparse factor would need {:.2} GiB but only {:.2} GiB are available; use a coarser \
-         spacing or a smaller horizon factor",
-        *needed_bytes as f64 / 1073741824.0,
-        *available_bytes as f64 / 1073741824.0
+        "the sparse factor would need {}, more than the {} allowed by {limited_by}; \
+         use a coarser spacing or a smaller horizon factor",
+        human_bytes(*needed_bytes as f64),
+        human_bytes(*limit_bytes)
     )]
     TooLarge {
         needed_bytes: usize,
-        available_bytes: usize,
+        limit_bytes: f64,
+        limited_by: MemoryLimit,
     },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
     Solver(String),
+}
+
+/// A size in B, KiB, MiB or GiB with three significant digits.
+pub fn human_bytes(bytes: f64) -> String {
+    let units = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut value = bytes;
+    let mut unit = 0;
+    while value >= 1024.0 && unit + 1 < units.len() {
+        value /= 1024.0;
+        unit += 1;
+    }
+    format!("{value:.3} {}", units[unit])
+}
+
+/// Where the limit on a factor's size comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MemoryLimit {
+    /// 90 % of the memory available (`MemAvailable` in /proc/meminfo).
+    Available,
+    /// The scene's `solver.memory_limit_gib`.
+    User,
+}
+
+impl std::fmt::Display for MemoryLimit {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            MemoryLimit::Available => "90 % of the available memory",
+            MemoryLimit::User => "solver.memory_limit_gib",
+        })
+    }
 }
 
 /// Any failure of a dhpd run.

@@ -234,6 +234,10 @@ const CASES: &[Case] = &[
     c("only_x_held_y_load_rigid_y_translation", &[Rep("{ x = 0.0, y = 0.0 }", "{ x = 0.0 }"), Rep("value = [1.0e6, 0.0]", "value = [1.0e6, 1.0e3]")], None, 3, &["translation along (0.000, 1.000)"]),
     c("every_dof_prescribed", &[Rep("min = [0.0, 0.0], max = [0.01, 0.1]", "min = [0.0, 0.0], max = [0.2, 0.1]")], None, 3, &["every degree of freedom is prescribed"]),
     c("isolated_point_default_policy", &[Add(PF)], Some("1.0 1.0 1e-6\n"), 3, &["discretization.isolated_points", "point"]),
+    c("point_held_by_a_single_bond", &[Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["non-positive pivot at point 200", "component 1"]),
+    c("factor_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 1e-6\n")], None, 3, &["would need", "solver.memory_limit_gib"]),
+    c("memory_limit_not_positive", &[Add("\n[solver]\nmemory_limit_gib = -1.0\n")], None, 2, &["solver.memory_limit_gib"]),
+    c("memory_limit_nan_string", &[Add("\n[solver]\nmemory_limit_gib = \"lots\"\n")], None, 2, &["solver.memory_limit_gib"]),
     // --- `dhpd check` (validation only) rejects what it can see ---
     c("check_zero_youngs_modulus", &[Check, Rep("youngs_modulus = 1.0e9", "youngs_modulus = 0.0")], None, 2, &["materials.soft.youngs_modulus"]),
     c("check_unknown_key", &[Check, Rep("spacing = 0.01", "spacin = 0.01")], None, 2, &["regions[0].spacin"]),

@@ -14,16 +14,15 @@ use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
 use crate::scene::{ModelKind, Scene, SolverMethod};
-use crate::solve::{relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu};
+use crate::solve::{
+    refine, relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu,
+};
 use serde::Serialize;
 use std::time::Instant;
 
 /// GMRES iterations allowed with the bond-based preconditioner before switching
 /// to the symmetric part of the shear tangent.
 const PRECONDITIONER_BUDGET: usize = 120;
-
-/// Relative residual above which a solve is refined with its own factor.
-pub const REFINE_THRESHOLD: f64 = 1e-12;
 
 /// Largest relative residual accepted from a direct solve.
 pub const RESIDUAL_THRESHOLD: f64 = 1e-8;
@@ -252,7 +251,7 @@ pub fn solve_with<M: Model>(
     let mut solver = match scene.solver {
         SolverMethod::Cholesky | SolverMethod::Gmres => {
             let chol = Cholesky::analyse(factored)?;
-            crate::solve::check_memory(chol.factor_bytes())?;
+            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
             if scene.solver == SolverMethod::Gmres {
                 // The cheap bond-based preconditioner gets a short budget (see below).
                 LinearSolver::Gmres(
@@ -291,7 +290,7 @@ pub fn solve_with<M: Model>(
             );
             let full = stiffness.symmetric_part(&transpose);
             let mut chol = Cholesky::analyse(full.view(&pattern))?;
-            crate::solve::check_memory(chol.factor_bytes())?;
+            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
             chol.factorize(full.view(&pattern))
                 .map_err(|e| factor_error(e, &dofs, &disc))?;
             let fallback = LinearSolver::Gmres(chol, 600);
@@ -312,24 +311,13 @@ pub fn solve_with<M: Model>(
         }
         .into());
     }
-    let mut residual = relative_residual(&apply(&x), &rhs);
-    // Iterative refinement: x += K⁻¹(b − K x) with the same factor while the
-    // residual is above REFINE_THRESHOLD and still improving (at most 3 steps;
-    // direct solvers only: GMRES already iterates to its tolerance).
-    let mut refinement_steps = 0;
-    while iterative.is_none() && residual > REFINE_THRESHOLD && refinement_steps < 3 {
-        let kx = apply(&x);
-        let r: Vec<f64> = rhs.iter().zip(&kx).map(|(b, k)| b - k).collect();
-        let (dx, _) = solver.solve(&apply, &r);
-        let candidate: Vec<f64> = x.iter().zip(&dx).map(|(a, b)| a + b).collect();
-        let improved = relative_residual(&apply(&candidate), &rhs);
-        if !(improved < residual) {
-            break;
-        }
-        x = candidate;
-        residual = improved;
-        refinement_steps += 1;
-    }
+    // Direct solvers are refined with their own factor when the residual is
+    // above REFINE_THRESHOLD; GMRES already iterates to its tolerance.
+    let (residual, refinement_steps) = if iterative.is_none() {
+        refine(&apply, &|v: &mut [f64]| solver.solve_in_place(v), &rhs, &mut x)
+    } else {
+        (relative_residual(&apply(&x), &rhs), 0)
+    };
     if refinement_steps > 0 {
         eprintln!("note: {refinement_steps} step(s) of iterative refinement brought the relative residual to {residual:.1e}");
     }
@@ -337,6 +325,7 @@ pub fn solve_with<M: Model>(
         return Err(NumericalError::ResidualTooLarge {
             residual,
             threshold: RESIDUAL_THRESHOLD,
+            refinement_steps,
         }
         .into());
     }

@@ -344,6 +344,10 @@ pub struct SolverSpec {
     /// model, GMRES preconditioned by the Cholesky factor of the symmetric part for
     /// the shear model (its tangent is 0.4-0.7 % asymmetric; 9 iterations to 1e-12).
     pub method: Option<SolverMethod>,
+    /// Largest sparse factor to attempt, in GiB (default and upper bound: 90 % of
+    /// the memory available when the factorisation starts). A larger factor is
+    /// refused right after the symbolic analysis, with the size it would need.
+    pub memory_limit_gib: Option<f64>,
 }
 
 /// `[output]`

@@ -204,6 +204,8 @@ pub struct Scene {
     pub loads: Vec<Load>,
     /// Solver method.
     pub solver: SolverMethod,
+    /// User limit on the size of a sparse factor in bytes (`solver.memory_limit_gib`).
+    pub memory_limit_bytes: Option<f64>,
     /// Output settings.
     pub output: OutputSettings,
 }
@@ -411,6 +413,13 @@ impl Scene {
                 ModelKind::BondBased => SolverMethod::Cholesky,
                 ModelKind::Shear => SolverMethod::Gmres,
             }),
+            memory_limit_bytes: match spec.solver.memory_limit_gib {
+                Some(gib) => {
+                    positive("solver.memory_limit_gib", gib)?;
+                    Some(gib * GIB)
+                }
+                None => None,
+            },
             output,
         };
         if scene.output.stress && scene.model != ModelKind::Shear {
@@ -511,6 +520,9 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
         })
         .collect()
 }
+
+/// Bytes per GiB.
+const GIB: f64 = 1073741824.0;
 
 fn positive(field: &str, v: f64) -> Result<(), InputError> {
     if v.is_finite() && v > 0.0 {
