@@ -314,7 +314,12 @@ pub fn solve_with<M: Model>(
     // Direct solvers are refined with their own factor when the residual is
     // above REFINE_THRESHOLD; GMRES already iterates to its tolerance.
     let (residual, refinement_steps) = if iterative.is_none() {
-        refine(&apply, &|v: &mut [f64]| solver.solve_in_place(v), &rhs, &mut x)
+        refine(
+            &apply,
+            &|v: &mut [f64]| solver.solve_in_place(v),
+            &rhs,
+            &mut x,
+        )
     } else {
         (relative_residual(&apply(&x), &rhs), 0)
     };

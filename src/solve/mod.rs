@@ -614,9 +614,15 @@ mod tests {
         let mut x = b.clone();
         chol.solve_in_place(&mut x);
         let before = relative_residual(&apply(&x), &b);
-        assert!(before > 1e-7, "the perturbed factor should be inaccurate: {before:e}");
+        assert!(
+            before > 1e-7,
+            "the perturbed factor should be inaccurate: {before:e}"
+        );
         let (after, steps) = refine(&apply, &|v: &mut [f64]| chol.solve_in_place(v), &b, &mut x);
-        assert!(after < REFINE_THRESHOLD, "residual {after:e} after {steps} steps");
+        assert!(
+            after < REFINE_THRESHOLD,
+            "residual {after:e} after {steps} steps"
+        );
         assert!((1..=MAX_REFINEMENT_STEPS).contains(&steps), "{steps} steps");
         assert_eq!(relative_residual(&apply(&x), &b), after);
     }
