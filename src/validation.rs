@@ -180,8 +180,18 @@ pub struct PlateWithHole {
 pub const HOLE_TRACTION: f64 = 1e6;
 
 impl PlateWithHole {
-    /// The scene.
+    /// The scene (plane stress, ν = 1/3, as in the paper).
     pub fn scene(&self) -> Scene {
+        self.scene_in("plane_stress", 1.0 / 3.0)
+    }
+
+    /// The same plate in plane strain with Poisson ratio `nu` (the stability
+    /// suite's near-incompressible cases, `validation/stability/fem`).
+    pub fn plane_strain_scene(&self, nu: f64) -> Scene {
+        self.scene_in("plane_strain", nu)
+    }
+
+    fn scene_in(&self, dimension: &str, nu: f64) -> Scene {
         let h = self.spacing;
         let p = HOLE_TRACTION;
         let kind = if self.shear { "shear" } else { "bond_based" };
@@ -189,13 +199,13 @@ impl PlateWithHole {
             r#"
             name = "plate_with_hole"
             [model]
-            dimension = "plane_stress"
+            dimension = "{dimension}"
             kind = "{kind}"
             [discretization]
             horizon_factor = {m}
             [materials.concrete]
             youngs_modulus = 30e9
-            poisson_ratio = 0.3333333333333333
+            poisson_ratio = {nu:?}
             [[regions]]
             material = "concrete"
             spacing = {h}

@@ -13,7 +13,7 @@ use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
-use crate::scene::{ModelKind, Scene, SolverMethod};
+use crate::scene::{Dimension, ModelKind, Scene, SolverMethod};
 use crate::solve::{
     refine, relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu,
 };
@@ -183,6 +183,7 @@ impl Prepared {
                 solve_with(&model, scene, self)
             }
             ModelKind::Shear => {
+                warn_near_incompressible(scene);
                 let model = Shear::new(
                     &self.disc,
                     scene.dimension,
@@ -192,6 +193,32 @@ impl Prepared {
                 solve_with(&model, scene, self)
             }
         }
+    }
+}
+
+/// Poisson ratio from which the weighted dilatation's boundary error, multiplied
+/// by λ, dominates (validation/stability: L2(u) error 1.2× the ν = 0.3 value at
+/// ν = 0.49, 1.7× at 0.4999, and spurious boundary stresses of several times the
+/// peak stress).
+const NEAR_INCOMPRESSIBLE: f64 = 0.49;
+
+/// Suggests the gradient dilatation for nearly incompressible shear-model
+/// materials in plane strain and 3D (plane stress stays compressible).
+fn warn_near_incompressible(scene: &Scene) {
+    if scene.gradient_dilatation || scene.dimension == Dimension::PlaneStress {
+        return;
+    }
+    if let Some(m) = scene
+        .materials
+        .iter()
+        .find(|m| m.poisson_ratio >= NEAR_INCOMPRESSIBLE)
+    {
+        eprintln!(
+            "note: material {:?} has ν = {}: nearly incompressible; the weighted dilatation's \
+             error at boundary points is multiplied by λ there (spurious boundary stresses); \
+             model.dilatation = \"gradient\" is more accurate (validation/stability)",
+            m.name, m.poisson_ratio
+        );
     }
 }
 
@@ -291,9 +318,23 @@ pub fn solve_with<M: Model>(
             let full = stiffness.symmetric_part(&transpose);
             let mut chol = Cholesky::analyse(full.view(&pattern))?;
             crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
-            chol.factorize(full.view(&pattern))
-                .map_err(|e| factor_error(e, &dofs, &disc))?;
-            let fallback = LinearSolver::Gmres(chol, 600);
+            let fallback = match chol.factorize(full.view(&pattern)) {
+                Ok(()) => LinearSolver::Gmres(chol, 600),
+                Err(FactorError::NonPositivePivot(_) | FactorError::NearlySingular(..)) => {
+                    // Possible with the gradient dilatation near ν = 1/2: K is
+                    // regular but its symmetric part is indefinite.
+                    eprintln!(
+                        "note: the symmetric part of the tangent is not positive definite; \
+                         solving with sparse LU instead"
+                    );
+                    drop(chol);
+                    let mut lu = LinearSolver::Lu(SparseLu::analyse(stiffness.view(&pattern))?);
+                    lu.factorize(stiffness.view(&pattern))
+                        .map_err(|e| factor_error(e, &dofs, &disc))?;
+                    lu
+                }
+                Err(e) => return Err(factor_error(e, &dofs, &disc)),
+            };
             let kx = apply(&x);
             let r: Vec<f64> = rhs.iter().zip(&kx).map(|(b, k)| b - k).collect();
             let (dx, second) = fallback.solve(&apply, &r);
