@@ -15,6 +15,7 @@ use super::dofs::DofMap;
 use super::split_at_offsets;
 use crate::discretization::Discretization;
 use crate::model::Coupling;
+use faer::sparse::SymbolicSparseColMatRef;
 use rayon::prelude::*;
 
 /// Point-level pattern plus the incoming-bond index used for column filling.
@@ -50,6 +51,14 @@ impl Pattern {
     /// Number of stored entries of `K`.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
+    }
+
+    /// The degree-of-freedom structure as a faer symbolic matrix (for the
+    /// symbolic factorisation, before any value is assembled).
+    pub fn symbolic(&self) -> SymbolicSparseColMatRef<'_, usize> {
+        let n = self.col_ptr.len() - 1;
+        // Built with sorted, in-range, duplicate-free row indices.
+        unsafe { SymbolicSparseColMatRef::new_unchecked(n, n, &self.col_ptr, None, &self.row_idx) }
     }
 
     /// Builds the pattern for `coupling` on the free unknowns of `dofs`.

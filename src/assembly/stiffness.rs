@@ -10,7 +10,7 @@ use super::pattern::Pattern;
 use super::split_at_offsets;
 use crate::discretization::Discretization;
 use crate::model::{Block, Column, Model};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::sparse::SparseColMatRef;
 use rayon::prelude::*;
 
 /// The reduced stiffness matrix on the free unknowns, in CSC form (both triangles stored).
@@ -40,17 +40,8 @@ impl Stiffness {
 
     /// A faer view of the matrix.
     pub fn view<'a>(&'a self, pattern: &'a Pattern) -> SparseColMatRef<'a, usize, f64> {
-        // The pattern is built with sorted, in-range, duplicate-free row indices.
-        let symbolic = unsafe {
-            SymbolicSparseColMatRef::new_unchecked(
-                self.n,
-                self.n,
-                &pattern.col_ptr,
-                None,
-                &pattern.row_idx,
-            )
-        };
-        SparseColMatRef::new(symbolic, &self.values)
+        debug_assert_eq!(pattern.col_ptr.len(), self.n + 1);
+        SparseColMatRef::new(pattern.symbolic(), &self.values)
     }
 
     /// Position of the transposed entry of every stored entry (the pattern is

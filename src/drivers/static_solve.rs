@@ -244,7 +244,25 @@ pub fn solve_with<M: Model>(
 
     let t = Instant::now();
     let pattern = Pattern::new(&disc, &dofs, model.coupling());
+    // GMRES factorises the symmetric part restricted to bonded pairs (the star
+    // pattern); the other methods factorise K itself.
+    let star = (scene.solver == SolverMethod::Gmres && model.coupling() == Coupling::Family)
+        .then(|| Pattern::new(&disc, &dofs, Coupling::Star));
+    let factored_pattern = star.as_ref().unwrap_or(&pattern);
     timings.pattern = t.elapsed().as_secs_f64();
+
+    // The symbolic Cholesky factorisation needs only the pattern: it runs before
+    // any value is assembled, so a factor too large for memory is refused early.
+    let t = Instant::now();
+    let cholesky = match scene.solver {
+        SolverMethod::Cholesky | SolverMethod::Gmres => {
+            let chol = Cholesky::analyse(factored_pattern.symbolic())?;
+            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
+            Some(chol)
+        }
+        SolverMethod::Lu => None,
+    };
+    let symbolic_time = t.elapsed().as_secs_f64();
 
     let t = Instant::now();
     let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
@@ -259,10 +277,6 @@ pub fn solve_with<M: Model>(
     let t = Instant::now();
     let transpose = Stiffness::transpose_positions(&pattern);
     let asymmetry = stiffness.asymmetry(&transpose);
-    // GMRES factorises the symmetric part restricted to bonded pairs (the star
-    // pattern); the other methods factorise K itself.
-    let star = (scene.solver == SolverMethod::Gmres && model.coupling() == Coupling::Family)
-        .then(|| Pattern::new(&disc, &dofs, Coupling::Star));
     let symmetric = (scene.solver == SolverMethod::Gmres).then(|| match &star {
         Some(star) => {
             let bb = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
@@ -270,32 +284,24 @@ pub fn solve_with<M: Model>(
         }
         None => stiffness.symmetric_part(&transpose),
     });
-    let factored_pattern = star.as_ref().unwrap_or(&pattern);
     let factored = symmetric
         .as_ref()
         .unwrap_or(&stiffness)
         .view(factored_pattern);
-    let mut solver = match scene.solver {
-        SolverMethod::Cholesky | SolverMethod::Gmres => {
-            let chol = Cholesky::analyse(factored)?;
-            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
-            if scene.solver == SolverMethod::Gmres {
-                // The cheap bond-based preconditioner gets a short budget (see below).
-                LinearSolver::Gmres(
-                    chol,
-                    if star.is_some() {
-                        PRECONDITIONER_BUDGET
-                    } else {
-                        600
-                    },
-                )
+    let mut solver = match cholesky {
+        // The cheap bond-based preconditioner gets a short budget (see below).
+        Some(chol) if scene.solver == SolverMethod::Gmres => LinearSolver::Gmres(
+            chol,
+            if star.is_some() {
+                PRECONDITIONER_BUDGET
             } else {
-                LinearSolver::Cholesky(chol)
-            }
-        }
-        SolverMethod::Lu => LinearSolver::Lu(SparseLu::analyse(factored)?),
+                600
+            },
+        ),
+        Some(chol) => LinearSolver::Cholesky(chol),
+        None => LinearSolver::Lu(SparseLu::analyse(factored)?),
     };
-    timings.symbolic_factorization = t.elapsed().as_secs_f64();
+    timings.symbolic_factorization = symbolic_time + t.elapsed().as_secs_f64();
 
     let t = Instant::now();
     solver
@@ -316,7 +322,7 @@ pub fn solve_with<M: Model>(
                 first.relative_residual, first.iterations
             );
             let full = stiffness.symmetric_part(&transpose);
-            let mut chol = Cholesky::analyse(full.view(&pattern))?;
+            let mut chol = Cholesky::analyse(pattern.symbolic())?;
             crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
             let fallback = match chol.factorize(full.view(&pattern)) {
                 Ok(()) => LinearSolver::Gmres(chol, 600),

@@ -75,6 +75,12 @@ pub fn parse(
             return Err(at(format!("volume {volume} must be positive")));
         }
         let spacing = (volume / if d < 3 { thickness } else { 1.0 }).powf(1.0 / d as f64);
+        if !(spacing.is_finite() && spacing > 0.0) {
+            return Err(at(format!(
+                "volume {volume} gives an equivalent spacing (volume / thickness)^(1/{d}) = {spacing} \
+                 outside the floating-point range"
+            )));
+        }
         let horizon = if cols.len() >= d + 2 {
             let h = number(d + 1, "horizon")?;
             if h <= 0.0 {
@@ -84,6 +90,12 @@ pub fn parse(
         } else {
             file.horizon_factor * spacing
         };
+        if !horizon.is_finite() {
+            return Err(at(format!(
+                "the horizon ({} × spacing {spacing}) overflows",
+                file.horizon_factor
+            )));
+        }
         let material = if cols.len() == d + 3 {
             let name = cols[d + 2];
             materials

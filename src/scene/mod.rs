@@ -40,7 +40,7 @@ pub fn parse_spec(text: &str, json: bool) -> Result<SceneSpec, InputError> {
 }
 
 fn path_or_root(path: &str) -> String {
-    if path.is_empty() || path == "." || path == "?" {
+    if path.trim().is_empty() || path == "." || path == "?" {
         "scene".to_string()
     } else {
         path.to_string()

@@ -296,6 +296,22 @@ impl Scene {
                 }
                 (None, None) => HorizonRule::Factor(horizon_factor),
             };
+            // Each input is finite and positive, but their products must be too.
+            let volume = r.spacing.powi(d as i32) * if d < 3 { thickness } else { 1.0 };
+            let radius = match horizon {
+                HorizonRule::Factor(m) => m * r.spacing,
+                HorizonRule::Radius(h) => h,
+            };
+            if !(volume.is_finite() && volume > 0.0 && (radius + 2.0 * r.spacing).is_finite()) {
+                return Err(InputError::new(
+                    format!("{f}.spacing"),
+                    format!(
+                        "spacing {} gives a point volume {volume:e} and a horizon {radius:e}: \
+                         outside the floating-point range; rescale the units",
+                        r.spacing
+                    ),
+                ));
+            }
             regions.push(Region {
                 material,
                 spacing: r.spacing,

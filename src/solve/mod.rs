@@ -17,7 +17,7 @@ use faer::sparse::linalg::cholesky::{
 };
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::linalg::LuError;
-use faer::sparse::SparseColMatRef;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Side};
 
 /// Pivots of a Cholesky factor `P K Pᵀ = L Lᵀ`: a conditioning indicator.
@@ -61,9 +61,9 @@ pub struct Cholesky {
 
 impl Cholesky {
     /// Symbolic analysis (ordering, elimination tree, supernodes) of the pattern.
-    pub fn analyse(matrix: SparseColMatRef<'_, usize, f64>) -> Result<Self, NumericalError> {
+    pub fn analyse(structure: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, NumericalError> {
         let symbolic = factorize_symbolic_cholesky(
-            matrix.symbolic(),
+            structure,
             Side::Lower,
             SymmetricOrdering::Amd,
             Default::default(),
@@ -516,7 +516,7 @@ mod tests {
         let n = 400;
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
         let matrix = SparseColMatRef::new(sym, &values);
-        let mut chol = Cholesky::analyse(matrix).unwrap();
+        let mut chol = Cholesky::analyse(sym).unwrap();
         chol.factorize(matrix).unwrap();
         let stats = chol.pivot_stats.unwrap();
         assert!(
@@ -589,7 +589,7 @@ mod tests {
             })
             .collect();
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let mut chol = Cholesky::analyse(SparseColMatRef::new(sym, &perturbed)).unwrap();
+        let mut chol = Cholesky::analyse(sym).unwrap();
         chol.factorize(SparseColMatRef::new(sym, &perturbed))
             .unwrap();
         let apply = move |x: &[f64]| {
