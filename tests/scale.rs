@@ -53,6 +53,10 @@ fn dimensionless_answer_is_scale_free() {
                 .zip(&reference)
                 .flat_map(|(a, b)| [(a[0] - b[0]).abs(), (a[1] - b[1]).abs()])
                 .fold(0.0f64, f64::max);
+            eprintln!(
+                "{model}: L = {length:e} m, E = {modulus:e} Pa: max |Δ(u/L)| = {:.1e} of max |u/L|",
+                diff / scale
+            );
             assert!(
                 diff <= 1e-10 * scale,
                 "{model}: L = {length:e} m, E = {modulus:e} Pa: u/L differs by {:.1e} relative",
