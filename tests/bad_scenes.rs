@@ -9,47 +9,14 @@
 //!
 //! Set `DHPD_BAD_SCENES_SHOW=1` to print the stderr of every case.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
 /// The valid scene every case edits (also the positive control).
-const BASE: &str = r#"# 0.2 m x 0.1 m plate, spacing 0.01 m (200 points)
-name = "bad_scenes_base"
-
-[model]
-dimension = "plane_stress"
-thickness = 0.01
-
-[discretization]
-horizon_factor = 3.015
-
-[materials.soft]
-youngs_modulus = 1.0e9
-poisson_ratio = 0.3333333333333333
-
-[[regions]]
-material = "soft"
-spacing = 0.01
-box = { min = [0.0, 0.0], max = [0.2, 0.1] }
-
-[[boundary]]
-name = "left"
-box = { min = [0.0, 0.0], max = [0.01, 0.1] }
-displacement = { x = 0.0, y = 0.0 }
-
-[[loads]]
-name = "pull"
-kind = "traction"
-face = "+x"
-box = { min = [0.19, 0.0], max = [0.2, 0.1] }
-value = [1.0e6, 0.0]
-
-[[output.profiles]]
-name = "centerline"
-from = [0.0, 0.05]
-to = [0.2, 0.05]
-"#;
+use common::PLATE_SCENE as BASE;
 
 /// A 1D bar (for the 1D-only cases).
 const BAR_1D: &str = r#"[model]

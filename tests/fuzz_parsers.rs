@@ -58,6 +58,8 @@
 //! is written to disk (`failure_persistence` is off), and each case works in
 //! its own directory under the system temporary directory, removed afterwards.
 
+mod common;
+
 use dhpd::drivers::static_solve;
 use dhpd::error::{Error, InputError};
 use dhpd::geometry::point_file;
@@ -692,42 +694,7 @@ at = [0.3]
 "#;
 
 /// The plane-stress plate of `tests/bad_scenes.rs` (200 points).
-const PLATE: &str = r#"# 0.2 m x 0.1 m plate, spacing 0.01 m (200 points)
-name = "bad_scenes_base"
-
-[model]
-dimension = "plane_stress"
-thickness = 0.01
-
-[discretization]
-horizon_factor = 3.015
-
-[materials.soft]
-youngs_modulus = 1.0e9
-poisson_ratio = 0.3333333333333333
-
-[[regions]]
-material = "soft"
-spacing = 0.01
-box = { min = [0.0, 0.0], max = [0.2, 0.1] }
-
-[[boundary]]
-name = "left"
-box = { min = [0.0, 0.0], max = [0.01, 0.1] }
-displacement = { x = 0.0, y = 0.0 }
-
-[[loads]]
-name = "pull"
-kind = "traction"
-face = "+x"
-box = { min = [0.19, 0.0], max = [0.2, 0.1] }
-value = [1.0e6, 0.0]
-
-[[output.profiles]]
-name = "centerline"
-from = [0.0, 0.05]
-to = [0.2, 0.05]
-"#;
+use common::PLATE_SCENE as PLATE;
 
 /// A plane-strain shear-model plate: two regions (one with a horizon radius), a
 /// point file, a hole, a crack, a body force, every option set (about 160 points).

@@ -17,6 +17,21 @@
 use dhpd::reference::{series_bar, ErrorStats};
 use dhpd::scene::{parse_spec, Scene};
 
+/// The error at contrast 10^±`to` is within `tolerance` (relative) of the error
+/// at 10^±`from`, on both sides: `errors` holds (exponent, error) pairs.
+fn assert_saturated(errors: &[(i32, f64)], from: i32, to: i32, tolerance: f64) {
+    let error = |e: i32| errors.iter().find(|(x, _)| *x == e).unwrap().1;
+    for sign in [-1, 1] {
+        let (a, b) = (error(from * sign), error(to * sign));
+        assert!(
+            (b / a - 1.0).abs() < tolerance,
+            "error grows with the contrast: {a:e} at 1e{}, {b:e} at 1e{}",
+            from * sign,
+            to * sign
+        );
+    }
+}
+
 #[test]
 fn stiffness_contrast_series_springs() {
     let (dl, dr, u_end) = (0.01, 0.005, 1e-4);
@@ -59,16 +74,7 @@ fn stiffness_contrast_series_springs() {
         );
         errors.push((exponent, stats.max_relative));
     }
-    let error = |e: i32| errors.iter().find(|(x, _)| *x == e).unwrap().1;
-    for sign in [-1, 1] {
-        let (e4, e6) = (error(4 * sign), error(6 * sign));
-        assert!(
-            (e6 / e4 - 1.0).abs() < 0.1,
-            "error grows with the contrast: {e4:e} at 1e{}, {e6:e} at 1e{}",
-            4 * sign,
-            6 * sign
-        );
-    }
+    assert_saturated(&errors, 4, 6, 0.1);
 }
 
 /// The same contrasts in the 2D strip of `validation/bimaterial_bar` (1 m × 0.1 m,
@@ -138,16 +144,7 @@ fn stiffness_contrast_strip_2d() {
         );
         errors.push((exponent, stats.max_relative));
     }
-    let error = |e: i32| errors.iter().find(|(x, _)| *x == e).unwrap().1;
-    for sign in [-1, 1] {
-        let (e6, e8) = (error(6 * sign), error(8 * sign));
-        assert!(
-            (e8 / e6 - 1.0).abs() < 0.01,
-            "error grows with the contrast: {e6:e} at 1e{}, {e8:e} at 1e{}",
-            6 * sign,
-            8 * sign
-        );
-    }
+    assert_saturated(&errors, 6, 8, 0.01);
     // A stiff half held only through a half 1e12 times softer is a mechanism in
     // double precision (pivot ratio ~1e-15): refused, with the point named.
     let mut scene = case.scene();

@@ -31,15 +31,17 @@ use dhpd::error::{Error, NumericalError};
 use dhpd::scene::{parse_spec, Scene};
 use std::path::{Path, PathBuf};
 
-const PLATE: &str = r#"
+/// The plate; `model` and `discretization` are extra lines for those sections.
+fn plate(model: &str, discretization: &str) -> String {
+    format!(
+        r#"
 [model]
 dimension = "plane_stress"
 thickness = 0.01
-MODEL_EXTRA
+{model}
 
 [discretization]
-volume_correction = "VOLUME_CORRECTION"
-ISOLATED
+{discretization}
 
 [materials.steel]
 youngs_modulus = 2.0e11
@@ -48,20 +50,25 @@ poisson_ratio = 0.3333333333333333
 [[regions]]
 material = "steel"
 spacing = 0.01
-box = { min = [0.0, 0.0], max = [0.2, 0.1] }
+box = {{ min = [0.0, 0.0], max = [0.2, 0.1] }}
 
 [[boundary]]
 name = "left"
-box = { min = [0.0, 0.0], max = [0.03, 0.1] }
-displacement = { x = 0.0, y = 0.0 }
+box = {{ min = [0.0, 0.0], max = [0.03, 0.1] }}
+displacement = {{ x = 0.0, y = 0.0 }}
 
 [[loads]]
 name = "pull"
 kind = "traction"
 face = "+x"
-box = { min = [0.19, 0.0], max = [0.2, 0.1] }
+box = {{ min = [0.19, 0.0], max = [0.2, 0.1] }}
 value = [1.0e6, 0.0]
-"#;
+"#
+    )
+}
+
+/// Partial volumes off, so that "one bond" is exact.
+const NO_CORRECTION: &str = "volume_correction = \"none\"";
 
 /// A scratch directory removed on drop.
 struct Scratch(PathBuf);
@@ -81,33 +88,16 @@ impl Drop for Scratch {
     }
 }
 
-/// The plate with the given substitutions, an optional point file (rows
-/// `x y volume horizon`) and extra TOML appended.
+/// Solves `text` with an optional point file `extra.xyz` (rows
+/// `x y volume [horizon]`) and extra TOML appended.
 fn run(
     tag: &str,
-    subs: &[(&str, &str)],
+    text: String,
     points: Option<&str>,
     extra: &str,
 ) -> Result<StaticSolution, Error> {
     let scratch = Scratch::new(tag);
-    let mut text = PLATE.to_string();
-    for (from, to) in [
-        ("MODEL_EXTRA", ""),
-        ("VOLUME_CORRECTION", "overlap"),
-        ("ISOLATED", ""),
-    ]
-    .iter()
-    .map(|(f, t)| (*f, subs.iter().find(|(g, _)| g == f).map_or(*t, |(_, u)| u)))
-    {
-        text = text.replace(from, to);
-    }
-    for (from, to) in subs
-        .iter()
-        .filter(|(f, _)| !["MODEL_EXTRA", "VOLUME_CORRECTION", "ISOLATED"].contains(f))
-    {
-        assert_eq!(text.matches(from).count(), 1, "substitution {from:?}");
-        text = text.replace(from, to);
-    }
+    let mut text = text;
     if let Some(rows) = points {
         std::fs::write(scratch.0.join("extra.xyz"), rows).unwrap();
         text.push_str("\n[[point_files]]\npath = \"extra.xyz\"\nmaterial = \"steel\"\n");
@@ -129,7 +119,7 @@ fn single_bond_along_x_is_named() {
     let p = [0.235, 0.055];
     let err = run(
         "bond_x",
-        &[("VOLUME_CORRECTION", "none")],
+        plate("", NO_CORRECTION),
         Some(&format!("{} {} 1e-4 0.0405\n", p[0], p[1])),
         "",
     )
@@ -157,7 +147,7 @@ fn single_bond_at_45_degrees_is_named() {
     let p = [0.195 + s, 0.095 + s];
     let err = run(
         "bond_45",
-        &[("VOLUME_CORRECTION", "none")],
+        plate("", NO_CORRECTION),
         Some(&format!("{:.17e} {:.17e} 1e-4 0.0405\n", p[0], p[1])),
         "",
     )
@@ -183,10 +173,7 @@ fn single_bond_shear_model_names_the_shape_tensor() {
     let p = [0.235, 0.055];
     let err = run(
         "bond_shear",
-        &[
-            ("VOLUME_CORRECTION", "none"),
-            ("MODEL_EXTRA", "kind = \"shear\""),
-        ],
+        plate("kind = \"shear\"", NO_CORRECTION),
         Some(&format!("{} {} 1e-4 0.0405\n", p[0], p[1])),
         "",
     )
@@ -207,7 +194,7 @@ fn single_bond_shear_model_names_the_shape_tensor() {
 fn point_cut_off_by_a_crack() {
     let crack = "\n[[cracks]]\nfrom = [0.2025, -0.05]\nto = [0.2025, 0.15]\n";
     let rows = "0.215 0.055 1e-4\n";
-    let err = run("cut_error", &[], Some(rows), crack)
+    let err = run("cut_error", plate("", ""), Some(rows), crack)
         .err()
         .expect("isolated point");
     eprintln!("{err}");
@@ -222,12 +209,13 @@ fn point_cut_off_by_a_crack() {
     }
     let removed = run(
         "cut_remove",
-        &[("ISOLATED", "isolated_points = \"remove\"")],
+        plate("", "isolated_points = \"remove\""),
         Some(rows),
         crack,
     )
     .expect("solves without it");
-    let reference = run("cut_reference", &[], None, crack).expect("the plate alone solves");
+    let reference =
+        run("cut_reference", plate("", ""), None, crack).expect("the plate alone solves");
     assert_eq!(removed.counts.removed_points, 1);
     assert_eq!(removed.u.len(), reference.u.len());
     let scale = reference.u.iter().map(|u| u[0].abs()).fold(0.0, f64::max);
@@ -247,7 +235,7 @@ fn point_cut_off_by_a_crack() {
 /// Two 0.1 m blocks joined by a 0.1 m ligament (x from 0.1 to 0.2).
 fn ligament(rows: usize) -> String {
     let (lo, hi) = (0.05 - 0.005 * rows as f64, 0.05 + 0.005 * rows as f64);
-    PLATE.replace(
+    plate("", "").replace(
         "box = { min = [0.0, 0.0], max = [0.2, 0.1] }\n",
         &format!(
             "box = {{ min = [0.0, 0.0], max = [0.1, 0.1] }}\n\n[[regions]]\nmaterial = \"steel\"\nspacing = 0.01\n\
@@ -256,9 +244,6 @@ fn ligament(rows: usize) -> String {
         ),
     )
     .replace("min = [0.19, 0.0], max = [0.2, 0.1]", "min = [0.29, 0.0], max = [0.3, 0.1]")
-    .replace("MODEL_EXTRA", "")
-    .replace("VOLUME_CORRECTION", "overlap")
-    .replace("ISOLATED", "")
 }
 
 fn solve_text(text: &str) -> Result<StaticSolution, Error> {

@@ -104,3 +104,43 @@ pub fn max_abs(v: &[[f64; 3]], d: usize) -> f64 {
         .flat_map(|x| x[..d].iter())
         .fold(0.0f64, |m, x| m.max(x.abs()))
 }
+
+/// A 0.2 m × 0.1 m plane-stress plate (200 points, left edge clamped, right edge
+/// pulled by a traction): the base of `tests/bad_scenes.rs` and a seed of
+/// `tests/fuzz_parsers.rs`.
+pub const PLATE_SCENE: &str = r#"# 0.2 m x 0.1 m plate, spacing 0.01 m (200 points)
+name = "bad_scenes_base"
+
+[model]
+dimension = "plane_stress"
+thickness = 0.01
+
+[discretization]
+horizon_factor = 3.015
+
+[materials.soft]
+youngs_modulus = 1.0e9
+poisson_ratio = 0.3333333333333333
+
+[[regions]]
+material = "soft"
+spacing = 0.01
+box = { min = [0.0, 0.0], max = [0.2, 0.1] }
+
+[[boundary]]
+name = "left"
+box = { min = [0.0, 0.0], max = [0.01, 0.1] }
+displacement = { x = 0.0, y = 0.0 }
+
+[[loads]]
+name = "pull"
+kind = "traction"
+face = "+x"
+box = { min = [0.19, 0.0], max = [0.2, 0.1] }
+value = [1.0e6, 0.0]
+
+[[output.profiles]]
+name = "centerline"
+from = [0.0, 0.05]
+to = [0.2, 0.05]
+"#;
