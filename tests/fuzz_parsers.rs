@@ -1454,8 +1454,8 @@ proptest! {
     ) {
         let dir = TempDir::new("points");
         let materials = vec![
-            Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25 },
-            Material { name: "stiff".into(), youngs_modulus: 2e9, poisson_ratio: 0.25 },
+            Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None },
+            Material { name: "stiff".into(), youngs_modulus: 2e9, poisson_ratio: 0.25, fracture: None },
         ];
         let file = PointFile {
             path: dir.path().join("pts.xyz"),
@@ -1505,7 +1505,7 @@ proptest! {
         ],
         d in 1usize..=3,
     ) {
-        let materials = vec![Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25 }];
+        let materials = vec![Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None }];
         let file = PointFile {
             path: PathBuf::from("pts.xyz"),
             field: "point_files[0]".into(),

@@ -11,8 +11,8 @@ mod validate;
 
 pub use spec::*;
 pub use validate::{
-    Aabb, Crack, Hole, HorizonRule, Load, LoadTarget, Material, OutputSettings, PointFile,
-    Prescribed, Probe, Profile, Region, Scene,
+    Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,
+    Material, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region, Scene,
 };
 
 use crate::error::{Error, InputError};

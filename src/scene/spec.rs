@@ -44,6 +44,11 @@ pub struct SceneSpec {
     /// What to write.
     #[serde(default)]
     pub output: OutputSpec,
+    /// Bond breakage settings shared by every driver that breaks bonds.
+    pub fracture: Option<FractureSpec>,
+    /// Quasi-static load stepping with bond breakage (its presence selects the
+    /// quasi-static driver).
+    pub quasi_static: Option<QuasiStaticSpec>,
 }
 
 /// `[model]`
@@ -202,6 +207,13 @@ pub struct MaterialSpec {
     /// Poisson ratio ν. Bond-based: defaults to the value the model implies
     /// (1/3 plane stress, 1/4 otherwise; none in 1D).
     pub poisson_ratio: Option<f64>,
+    /// Fracture energy G₀ in J/m² (fracture runs only); the critical value of
+    /// each bond follows from it and the owner's horizon.
+    pub fracture_energy: Option<f64>,
+    /// Bond-based: critical stretch s₀, instead of `fracture_energy`.
+    pub critical_stretch: Option<f64>,
+    /// Shear model: critical deviatoric bond strain ε^d_max, instead of `fracture_energy`.
+    pub critical_deviatoric_strain: Option<f64>,
 }
 
 /// An axis-aligned box; 1D, 2D or 3D coordinates.
@@ -348,6 +360,11 @@ pub struct SolverSpec {
     /// the memory available when the factorisation starts). A larger factor is
     /// refused right after the symbolic analysis, with the size it would need.
     pub memory_limit_gib: Option<f64>,
+    /// Fracture runs: a re-solve after bonds broke iterates with the previous
+    /// factor as preconditioner; past this many iterations the matrix is
+    /// factorised afresh (default: chosen from the measured cost of a
+    /// factorisation and of one iteration).
+    pub refactor_iterations: Option<usize>,
 }
 
 /// `[output]`
@@ -373,6 +390,12 @@ pub struct OutputSpec {
     /// Point probes, written together to `probes.csv`.
     #[serde(default)]
     pub probes: Vec<ProbeSpec>,
+    /// Fracture runs: write a VTU file of the state every this many steps
+    /// (listed in `series.pvd`); default: the final state only.
+    pub every: Option<usize>,
+    /// Fracture runs: write a VTU file at these steps too.
+    #[serde(default)]
+    pub steps: Vec<usize>,
 }
 
 impl Default for OutputSpec {
@@ -384,6 +407,8 @@ impl Default for OutputSpec {
             matrix_market: false,
             profiles: Vec::new(),
             probes: Vec::new(),
+            every: None,
+            steps: Vec::new(),
         }
     }
 }
@@ -408,4 +433,81 @@ pub struct ProbeSpec {
     pub name: String,
     /// Location.
     pub at: Vec<f64>,
+}
+
+/// `[fracture]`: bond breakage settings shared by the drivers that break bonds.
+#[derive(Debug, Clone, Default, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FractureSpec {
+    /// Shear model: how `fracture_energy` becomes ε^d_max. `"pair"` (default)
+    /// counts the energy of both bonds of a pair (001 Eq. 40 divided by √2),
+    /// `"one_bond"` is 001 Eq. 40 as printed.
+    #[serde(default)]
+    pub shear_energy: EnergyCounting,
+    /// Boxes in which no bond breaks (a bond with either end inside is kept).
+    #[serde(default)]
+    pub no_fail: Vec<NoFailSpec>,
+}
+
+/// How the fracture energy of the shear model is counted (formulation Sec. 5).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum EnergyCounting {
+    /// Both bonds `i→j` and `j→i` of a pair store energy: ε^d_max of 001 Eq. 40 / √2.
+    #[default]
+    Pair,
+    /// One bond per pair, as 001 Eq. 39-40 count it.
+    OneBond,
+}
+
+/// `[[fracture.no_fail]]`: a box where bonds never break.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct NoFailSpec {
+    /// The box (inclusive).
+    #[serde(rename = "box")]
+    pub bounds: BoxSpec,
+}
+
+/// How the quasi-static driver breaks bonds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Strategy {
+    /// From one solve, the exact load factor at which the next bond reaches its
+    /// critical value; scale to it, break it, re-solve (default).
+    #[default]
+    Event,
+    /// At each load step, break every bond over its critical value, re-solve.
+    All,
+    /// At each load step, break the bonds within `tolerance` of the largest
+    /// ratio (value / critical value), re-solve.
+    MostCritical,
+}
+
+/// `[quasi_static]`: load stepping under the scene's loads scaled by a load factor.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct QuasiStaticSpec {
+    /// `"event"` (default), `"all"` or `"most_critical"`.
+    #[serde(default)]
+    pub strategy: Strategy,
+    /// Largest load factor (the scene's prescribed values and loads are reached
+    /// at 1). Required.
+    pub max_load_factor: f64,
+    /// `all` / `most_critical`: number of uniform load steps up to `max_load_factor` (default 100).
+    pub steps: Option<usize>,
+    /// `all` / `most_critical`: halve a step that breaks more than this many bonds
+    /// (adaptive stepping; default: no halving).
+    pub max_broken_per_step: Option<usize>,
+    /// `all` / `most_critical`: smallest step when halving, as a fraction of the
+    /// uniform step (default 1/1024).
+    pub min_step_fraction: Option<f64>,
+    /// `event` / `most_critical`: bonds whose ratio (value / critical value) is
+    /// within this relative tolerance of the largest break together (default
+    /// 1e-6: ties up to round-off, e.g. bonds mirrored by a symmetry).
+    pub tolerance: Option<f64>,
+    /// `all` / `most_critical`: largest number of re-solves within one step (default 10,000).
+    pub max_resolves: Option<usize>,
+    /// `event`: largest number of events (default 1,000,000).
+    pub max_events: Option<usize>,
 }

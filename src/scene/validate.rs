@@ -40,6 +40,49 @@ pub struct Material {
     pub youngs_modulus: f64,
     /// Poisson ratio (the model's implied value when not given).
     pub poisson_ratio: f64,
+    /// How bonds of this material break (None: they never do).
+    pub fracture: Option<FractureParameter>,
+}
+
+/// A material's fracture parameter, as the scene gives it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum FractureParameter {
+    /// Fracture energy G₀ (J/m²); the critical value follows from the owner's horizon.
+    Energy(f64),
+    /// Critical stretch s₀ (bond-based).
+    CriticalStretch(f64),
+    /// Critical deviatoric bond strain ε^d_max (shear model).
+    CriticalDeviatoricStrain(f64),
+}
+
+/// Bond breakage settings shared by the drivers that break bonds.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FractureSettings {
+    /// Shear model: energy counting of `fracture_energy`.
+    pub shear_energy: EnergyCounting,
+    /// Boxes where no bond breaks.
+    pub no_fail: Vec<Aabb>,
+}
+
+/// Validated quasi-static settings (formulation Sec. 5, sequentially linear breakage).
+#[derive(Debug, Clone, PartialEq)]
+pub struct QuasiStatic {
+    /// Breakage strategy.
+    pub strategy: Strategy,
+    /// Largest load factor.
+    pub max_load_factor: f64,
+    /// Uniform steps up to `max_load_factor` (`all`, `most_critical`).
+    pub steps: usize,
+    /// Halve a step that breaks more than this many bonds.
+    pub max_broken_per_step: Option<usize>,
+    /// Smallest step when halving, as a fraction of the uniform step.
+    pub min_step_fraction: f64,
+    /// Relative tolerance on the largest ratio for bonds that break together.
+    pub tolerance: f64,
+    /// Re-solves allowed within one step.
+    pub max_resolves: usize,
+    /// Events allowed (`event`).
+    pub max_events: usize,
 }
 
 /// How a region's horizons are set.
@@ -167,6 +210,10 @@ pub struct OutputSettings {
     pub profiles: Vec<Profile>,
     /// Probes.
     pub probes: Vec<Probe>,
+    /// Fracture runs: a VTU file every this many steps.
+    pub every: Option<usize>,
+    /// Fracture runs: a VTU file at these steps.
+    pub steps: Vec<usize>,
 }
 
 /// A validated scene: everything the numerics need, nothing they do not.
@@ -206,8 +253,15 @@ pub struct Scene {
     pub solver: SolverMethod,
     /// User limit on the size of a sparse factor in bytes (`solver.memory_limit_gib`).
     pub memory_limit_bytes: Option<f64>,
+    /// Iterations of a re-solve with the previous factor before refactorising
+    /// (`solver.refactor_iterations`; None: chosen from measured costs).
+    pub refactor_iterations: Option<usize>,
     /// Output settings.
     pub output: OutputSettings,
+    /// Bond breakage settings (used by fracture runs only).
+    pub fracture: FractureSettings,
+    /// Quasi-static fracture run (None: a static solve).
+    pub quasi_static: Option<QuasiStatic>,
 }
 
 impl Scene {
@@ -401,6 +455,27 @@ impl Scene {
         }
 
         let output = output(&spec.output, d)?;
+        let (fracture, quasi_static) = fracture_runs(&spec, &materials, &boundaries, &loads, d)?;
+        if quasi_static.is_none() {
+            for (key, present) in [
+                ("output.every", output.every.is_some()),
+                ("output.steps", !output.steps.is_empty()),
+                ("solver.refactor_iterations", spec.solver.refactor_iterations.is_some()),
+            ] {
+                if present {
+                    return Err(InputError::new(
+                        key,
+                        "applies to fracture runs only (add a [quasi_static] section)",
+                    ));
+                }
+            }
+        }
+        if spec.solver.refactor_iterations == Some(0) {
+            return Err(InputError::new(
+                "solver.refactor_iterations",
+                "0 would refactorise before every re-solve; give at least 1",
+            ));
+        }
         let scene_name = match &spec.name {
             Some(n) => {
                 name("name", n)?;
@@ -436,7 +511,10 @@ impl Scene {
                 }
                 None => None,
             },
+            refactor_iterations: spec.solver.refactor_iterations,
             output,
+            fracture,
+            quasi_static,
         };
         if scene.output.stress && scene.model != ModelKind::Shear {
             return Err(InputError::new(
@@ -532,9 +610,178 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
                 name: name.clone(),
                 youngs_modulus: m.youngs_modulus,
                 poisson_ratio: m.poisson_ratio.unwrap_or(implied),
+                fracture: fracture_parameter(&f, m, spec)?,
             })
         })
         .collect()
+}
+
+/// The fracture parameter of a material: at most one, positive, matching the
+/// model, and only in a run that breaks bonds.
+fn fracture_parameter(
+    field: &str,
+    m: &MaterialSpec,
+    spec: &SceneSpec,
+) -> Result<Option<FractureParameter>, InputError> {
+    let given: Vec<(&str, f64)> = [
+        ("fracture_energy", m.fracture_energy),
+        ("critical_stretch", m.critical_stretch),
+        ("critical_deviatoric_strain", m.critical_deviatoric_strain),
+    ]
+    .into_iter()
+    .filter_map(|(k, v)| v.map(|v| (k, v)))
+    .collect();
+    let Some(&(key, value)) = given.first() else {
+        return Ok(None);
+    };
+    let f = format!("{field}.{key}");
+    if given.len() > 1 {
+        return Err(InputError::new(
+            format!("{field}.{}", given[1].0),
+            format!("give one fracture parameter per material, not both {key} and {}", given[1].0),
+        ));
+    }
+    if spec.quasi_static.is_none() {
+        return Err(InputError::new(
+            f,
+            "fracture parameters apply to runs that break bonds: add a [quasi_static] section, \
+             or remove the parameter for a static solve",
+        ));
+    }
+    positive(&f, value)?;
+    let parameter = match (key, spec.model.kind) {
+        ("fracture_energy", _) => FractureParameter::Energy(value),
+        ("critical_stretch", ModelKind::BondBased) => FractureParameter::CriticalStretch(value),
+        ("critical_deviatoric_strain", ModelKind::Shear) => {
+            FractureParameter::CriticalDeviatoricStrain(value)
+        }
+        ("critical_stretch", _) => {
+            return Err(InputError::new(
+                f,
+                "the shear model breaks bonds on their deviatoric strain: give \
+                 critical_deviatoric_strain or fracture_energy",
+            ))
+        }
+        _ => {
+            return Err(InputError::new(
+                f,
+                "the bond-based model breaks bonds on their stretch: give critical_stretch \
+                 or fracture_energy",
+            ))
+        }
+    };
+    Ok(Some(parameter))
+}
+
+/// The `[fracture]` and `[quasi_static]` sections.
+fn fracture_runs(
+    spec: &SceneSpec,
+    materials: &[Material],
+    boundaries: &[Prescribed],
+    loads: &[Load],
+    d: usize,
+) -> Result<(FractureSettings, Option<QuasiStatic>), InputError> {
+    let Some(q) = &spec.quasi_static else {
+        if spec.fracture.is_some() {
+            return Err(InputError::new(
+                "fracture",
+                "bond breakage settings need a run that breaks bonds: add a [quasi_static] section",
+            ));
+        }
+        return Ok((FractureSettings::default(), None));
+    };
+    let mut fracture = FractureSettings::default();
+    if let Some(f) = &spec.fracture {
+        fracture.shear_energy = f.shear_energy;
+        for (k, b) in f.no_fail.iter().enumerate() {
+            fracture
+                .no_fail
+                .push(aabb(&format!("fracture.no_fail[{k}].box"), &b.bounds, d)?);
+        }
+    }
+    if !materials.iter().any(|m| m.fracture.is_some()) {
+        return Err(InputError::new(
+            "quasi_static",
+            "no material has a fracture parameter, so no bond could break: give \
+             fracture_energy (or the critical value) for at least one material",
+        ));
+    }
+    let loaded = boundaries
+        .iter()
+        .any(|b| b.values.iter().flatten().any(|&v| v != 0.0))
+        || loads.iter().any(|l| l.value.iter().any(|&v| v != 0.0));
+    if !loaded {
+        return Err(InputError::new(
+            "quasi_static",
+            "every prescribed displacement and load is zero: scaling them by a load factor \
+             does nothing; prescribe a non-zero displacement (or load)",
+        ));
+    }
+    positive("quasi_static.max_load_factor", q.max_load_factor)?;
+    let stepped = q.strategy != Strategy::Event;
+    let only = |key: &str, present: bool, applies: bool, to: &str| {
+        if present && !applies {
+            Err(InputError::new(
+                format!("quasi_static.{key}"),
+                format!("applies to strategy {to} only (strategy is {:?})", q.strategy),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    let stepped_names = "\"all\" or \"most_critical\"";
+    only("steps", q.steps.is_some(), stepped, stepped_names)?;
+    only("max_broken_per_step", q.max_broken_per_step.is_some(), stepped, stepped_names)?;
+    only("min_step_fraction", q.min_step_fraction.is_some(), stepped, stepped_names)?;
+    only("max_resolves", q.max_resolves.is_some(), stepped, stepped_names)?;
+    only("max_events", q.max_events.is_some(), !stepped, "\"event\"")?;
+    only(
+        "tolerance",
+        q.tolerance.is_some(),
+        q.strategy != Strategy::All,
+        "\"event\" or \"most_critical\"",
+    )?;
+    let count = |key: &str, v: Option<usize>, default: usize, max: usize| match v {
+        Some(n) if n == 0 || n > max => Err(InputError::new(
+            format!("quasi_static.{key}"),
+            format!("{n} is outside 1..={max}"),
+        )),
+        Some(n) => Ok(n),
+        None => Ok(default),
+    };
+    let steps = count("steps", q.steps, 100, 10_000_000)?;
+    let max_resolves = count("max_resolves", q.max_resolves, 10_000, 100_000_000)?;
+    let max_events = count("max_events", q.max_events, 1_000_000, 1_000_000_000)?;
+    if let Some(n) = q.max_broken_per_step {
+        count("max_broken_per_step", Some(n), n, usize::MAX)?;
+    }
+    let min_step_fraction = q.min_step_fraction.unwrap_or(1.0 / 1024.0);
+    if !(min_step_fraction > 0.0 && min_step_fraction <= 1.0) {
+        return Err(InputError::new(
+            "quasi_static.min_step_fraction",
+            format!("{min_step_fraction} is outside (0, 1]"),
+        ));
+    }
+    let tolerance = q.tolerance.unwrap_or(1e-6);
+    if !(0.0..1.0).contains(&tolerance) {
+        return Err(InputError::new(
+            "quasi_static.tolerance",
+            format!("{tolerance} is outside [0, 1)"),
+        ));
+    }
+    Ok((
+        fracture,
+        Some(QuasiStatic {
+            strategy: q.strategy,
+            max_load_factor: q.max_load_factor,
+            steps,
+            max_broken_per_step: q.max_broken_per_step,
+            min_step_fraction,
+            tolerance,
+            max_resolves,
+            max_events,
+        }),
+    ))
 }
 
 /// Bytes per GiB.
@@ -820,7 +1067,15 @@ fn output(o: &OutputSpec, d: usize) -> Result<OutputSettings, InputError> {
             at: coords(&format!("{f}.at"), &p.at, d)?,
         });
     }
+    if o.every == Some(0) {
+        return Err(InputError::new(
+            "output.every",
+            "0 steps; give a positive number of steps",
+        ));
+    }
     Ok(OutputSettings {
+        every: o.every,
+        steps: o.steps.clone(),
         vtu: o.vtu,
         points_csv: o.points_csv,
         stress: o.stress,
