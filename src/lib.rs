@@ -42,6 +42,7 @@
 //! ```
 
 pub mod assembly;
+pub mod damage;
 pub mod discretization;
 pub mod drivers;
 pub mod error;

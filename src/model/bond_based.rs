@@ -163,6 +163,36 @@ impl Model for BondBased {
         }
     }
 
+    fn bond_strains(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [f64],
+    ) -> Option<f64> {
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        let first = bonds.offsets[i];
+        for b in bonds.owned_by(i) {
+            out[b - first] = if bonds.intact[b] {
+                let j = bonds.neighbour[b] as usize;
+                let xi = sub(&p.x[j], &p.x[i]);
+                let eta = sub(&u[j], &u[i]);
+                let len = norm(&xi);
+                if linear {
+                    dot(&xi, &eta) / (len * len)
+                } else {
+                    let y: [f64; 3] = std::array::from_fn(|a| xi[a] + eta[a]);
+                    (norm(&y) - len) / len
+                }
+            } else {
+                0.0
+            };
+        }
+        None
+    }
+
     fn tangent_column(
         &self,
         disc: &Discretization,

@@ -35,7 +35,7 @@ pub enum Column {
 }
 
 /// A bond kernel: forces and tangent of one owner's family.
-pub trait Model: Sync {
+pub trait Model: Sync + Send {
     /// The coupling pattern of an owner's tangent.
     fn coupling(&self) -> Coupling;
 
@@ -50,6 +50,26 @@ pub trait Model: Sync {
         linear: bool,
         out: &mut [[f64; 3]],
     );
+
+    /// The strain each bond of `owner` puts to the model's damage rule
+    /// (formulation Sec. 5), into `out` (0 for broken bonds): the stretch `s`
+    /// (bond-based) or the deviatoric bond strain `|ε^d|` (shear model). Returns
+    /// the owner's dilatation θ when the rule has a tension check, else `None`.
+    fn bond_strains(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [f64],
+    ) -> Option<f64>;
+
+    /// Brings the model's per-owner data up to date after bonds of `owners`
+    /// broke; returns the owners that can no longer carry their own bonds
+    /// (whose remaining bonds the caller must break). Default: nothing to update.
+    fn refresh_owners(&mut self, _disc: &Discretization, _owners: &[usize]) -> Vec<usize> {
+        Vec::new()
+    }
 
     /// Recovered stress at `owner` for displacements `u` (linearised), if the model
     /// defines one.

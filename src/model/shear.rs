@@ -79,6 +79,21 @@ struct Owner {
     mu: f64,
 }
 
+impl Owner {
+    /// The data of an owner without intact bonds: every kernel loop over its
+    /// intact bonds is empty, so it contributes nothing.
+    fn failed(kappa: f64, mu: f64) -> Self {
+        Owner {
+            m: 0.0,
+            k_inv: [[0.0; 3]; 3],
+            a_sum: [0.0; 3],
+            b_sum: [0.0; 3],
+            kappa,
+            mu,
+        }
+    }
+}
+
 /// The shear-deformation model with each owner's cached family data.
 #[derive(Debug, Clone)]
 pub struct Shear {
@@ -129,7 +144,8 @@ impl Shear {
         let o = &self.owners[owner];
         let bonds = disc.bonds.owned_by(owner);
         let mut forces = vec![[0.0; 3]; bonds.len()];
-        let rotation = self.family_forces(disc, owner, u, linear, &mut forces);
+        let k = self.family_forces(disc, owner, u, linear, &mut forces);
+        let rotation = if k.linear { identity() } else { k.rotation };
         let p = &disc.points;
         let mut acc = [[0.0; 3]; 3];
         for (slot, b) in bonds.enumerate() {
@@ -157,37 +173,28 @@ impl Shear {
         sigma
     }
 
-    /// Writes the force each bond of `owner` puts on it into `out`; returns the
-    /// rotation used (identity for the linearised kernel).
-    fn family_forces(
+    /// The owner's rotation (the polar rotation `R`, or `I + W` linearised) and
+    /// dilatation `θ` for displacements `u`.
+    fn kinematics(
         &self,
         disc: &Discretization,
         i: usize,
         u: &[[f64; 3]],
         linear: bool,
-        out: &mut [[f64; 3]],
-    ) -> Mat3 {
+    ) -> Kinematics {
         let o = &self.owners[i];
         let d = self.d;
         let df = d as f64;
         let p = &disc.points;
         let bonds = &disc.bonds;
-        let first = bonds.offsets[i];
-        let family = bonds.owned_by(i);
-        let bond_vectors = |b: usize| {
-            let j = bonds.neighbour[b] as usize;
-            let xi = sub(&p.x[j], &p.x[i]);
-            let eta = sub(&u[j], &u[i]);
-            let len2 = dot(&xi, &xi);
-            (j, xi, eta, len2)
-        };
-        let mut rotation = identity();
+        let intact = bonds.owned_by(i).filter(|&b| bonds.intact[b]);
         if linear {
             let mut g = [[0.0; 3]; 3];
             let mut theta = 0.0;
-            for b in family.clone().filter(|&b| bonds.intact[b]) {
-                let (j, xi, eta, len2) = bond_vectors(b);
-                let w = p.volume[j] * bonds.volume_factor[b] / len2;
+            for b in intact {
+                let (j, xi) = bond_vector(disc, i, b);
+                let eta = sub(&u[j], &u[i]);
+                let w = p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
                 let bk = mat_vec(&o.k_inv, &xi);
                 for r in 0..3 {
                     for c in 0..3 {
@@ -200,64 +207,134 @@ impl Shear {
                     df / o.m * w * dot(&xi, &eta)
                 };
             }
-            let wmat: Mat3 =
-                std::array::from_fn(|r| std::array::from_fn(|c| 0.5 * (g[r][c] - g[c][r])));
-            for b in family {
-                if !bonds.intact[b] {
-                    out[b - first] = [0.0; 3];
-                    continue;
+            let skew = std::array::from_fn(|r| std::array::from_fn(|c| 0.5 * (g[r][c] - g[c][r])));
+            return Kinematics {
+                linear: true,
+                rotation: skew,
+                theta,
+            };
+        }
+        let mut f = [[0.0; 3]; 3];
+        for b in intact.clone() {
+            let (j, xi) = bond_vector(disc, i, b);
+            let eta = sub(&u[j], &u[i]);
+            let w = p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
+            for r in 0..d {
+                for c in 0..d {
+                    f[r][c] += w * (xi[r] + eta[r]) * xi[c];
                 }
-                let (j, xi, eta, len2) = bond_vectors(b);
-                let wx = mat_vec(&wmat, &xi);
-                let scale = df / (len2 * o.m) * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
-                out[b - first] = std::array::from_fn(|a| {
-                    scale
-                        * ((o.kappa - 2.0 * o.mu / df) * theta * xi[a]
-                            + 2.0 * o.mu * (eta[a] - wx[a]))
-                });
-            }
-        } else {
-            let mut f = [[0.0; 3]; 3];
-            for b in family.clone().filter(|&b| bonds.intact[b]) {
-                let (j, xi, eta, len2) = bond_vectors(b);
-                let w = p.volume[j] * bonds.volume_factor[b] / len2;
-                for r in 0..d {
-                    for c in 0..d {
-                        f[r][c] += w * (xi[r] + eta[r]) * xi[c];
-                    }
-                }
-            }
-            let f = mat_mul(&f, &o.k_inv);
-            rotation = proper_rotation(&f, d);
-            let mut theta = 0.0;
-            for b in family.clone().filter(|&b| bonds.intact[b]) {
-                let (j, xi, eta, len2) = bond_vectors(b);
-                let w = p.volume[j] * bonds.volume_factor[b] / len2;
-                let xr = mat_vec(&rotation, &xi);
-                let er: [f64; 3] = std::array::from_fn(|a| xi[a] + eta[a] - xr[a]);
-                theta += if self.gradient_dilatation {
-                    w * dot(&er, &mat_vec(&rotation, &mat_vec(&o.k_inv, &xi)))
-                } else {
-                    df / o.m * w * dot(&er, &xr)
-                };
-            }
-            for b in family {
-                if !bonds.intact[b] {
-                    out[b - first] = [0.0; 3];
-                    continue;
-                }
-                let (j, xi, eta, len2) = bond_vectors(b);
-                let xr = mat_vec(&rotation, &xi);
-                let scale = df / (len2 * o.m) * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
-                out[b - first] = std::array::from_fn(|a| {
-                    let er = xi[a] + eta[a] - xr[a];
-                    let ed = er - theta / df * xr[a];
-                    scale * (o.kappa * theta * xr[a] + 2.0 * o.mu * ed)
-                });
             }
         }
-        rotation
+        let rotation = proper_rotation(&mat_mul(&f, &o.k_inv), d);
+        let mut k = Kinematics {
+            linear: false,
+            rotation,
+            theta: 0.0,
+        };
+        for b in intact {
+            let (j, xi) = bond_vector(disc, i, b);
+            let eta = sub(&u[j], &u[i]);
+            let w = p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
+            let (xr, er) = k.rotated(&xi, &eta);
+            k.theta += if self.gradient_dilatation {
+                w * dot(&er, &mat_vec(&rotation, &mat_vec(&o.k_inv, &xi)))
+            } else {
+                df / o.m * w * dot(&er, &xr)
+            };
+        }
+        k
     }
+
+    /// Writes the force each bond of `owner` puts on it into `out` (001 Eq. 27-28);
+    /// returns the owner's kinematics.
+    fn family_forces(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    ) -> Kinematics {
+        let o = &self.owners[i];
+        let df = self.d as f64;
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        let first = bonds.offsets[i];
+        let k = self.kinematics(disc, i, u, linear);
+        for b in bonds.owned_by(i) {
+            if !bonds.intact[b] {
+                out[b - first] = [0.0; 3];
+                continue;
+            }
+            let (j, xi) = bond_vector(disc, i, b);
+            let eta = sub(&u[j], &u[i]);
+            let (xr, er) = k.rotated(&xi, &eta);
+            let scale =
+                df / (dot(&xi, &xi) * o.m) * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+            out[b - first] = std::array::from_fn(|a| {
+                let deviatoric = er[a] - k.theta / df * xr[a];
+                scale * (o.kappa * k.theta * xr[a] + 2.0 * o.mu * deviatoric)
+            });
+        }
+        k
+    }
+
+    /// The deviatoric bond strain `|ε^d| = |η^d|/|ξ|` of every bond of `owner`
+    /// into `out` (0 for broken bonds, formulation Sec. 5); returns the owner's
+    /// dilatation θ.
+    pub fn deviatoric_strains(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [f64],
+    ) -> f64 {
+        let df = self.d as f64;
+        let bonds = &disc.bonds;
+        let first = bonds.offsets[i];
+        let k = self.kinematics(disc, i, u, linear);
+        for b in bonds.owned_by(i) {
+            out[b - first] = if bonds.intact[b] {
+                let (j, xi) = bond_vector(disc, i, b);
+                let (xr, er) = k.rotated(&xi, &sub(&u[j], &u[i]));
+                let deviatoric: [f64; 3] = std::array::from_fn(|a| er[a] - k.theta / df * xr[a]);
+                (dot(&deviatoric, &deviatoric) / dot(&xi, &xi)).sqrt()
+            } else {
+                0.0
+            };
+        }
+        k.theta
+    }
+}
+
+/// An owner's rotation and dilatation.
+#[derive(Debug, Clone, Copy)]
+struct Kinematics {
+    /// Whether `rotation` holds the infinitesimal rotation `W` (linearised kernel)
+    /// rather than the polar rotation `R`.
+    linear: bool,
+    rotation: Mat3,
+    theta: f64,
+}
+
+impl Kinematics {
+    /// `(ξ_r, η_r)` of a bond: `(ξ, η − W ξ)` linearised, `(R ξ, ξ + η − R ξ)` otherwise.
+    fn rotated(&self, xi: &[f64; 3], eta: &[f64; 3]) -> ([f64; 3], [f64; 3]) {
+        let r = mat_vec(&self.rotation, xi);
+        if self.linear {
+            (*xi, std::array::from_fn(|a| eta[a] - r[a]))
+        } else {
+            (r, std::array::from_fn(|a| xi[a] + eta[a] - r[a]))
+        }
+    }
+}
+
+/// Neighbour and reference bond vector `ξ` of bond `b` owned by `i`.
+#[inline]
+fn bond_vector(disc: &Discretization, i: usize, b: usize) -> (usize, [f64; 3]) {
+    let j = disc.bonds.neighbour[b] as usize;
+    (j, sub(&disc.points.x[j], &disc.points.x[i]))
 }
 
 impl Model for Shear {
@@ -274,6 +351,38 @@ impl Model for Shear {
         out: &mut [[f64; 3]],
     ) {
         self.family_forces(disc, owner, u, linear, out);
+    }
+
+    fn bond_strains(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [f64],
+    ) -> Option<f64> {
+        Some(self.deviatoric_strains(disc, owner, u, linear, out))
+    }
+
+    /// Recomputes `m`, `K⁻¹` and the column sums of each owner from its intact
+    /// bonds. An owner whose intact bonds no longer span the space gets zero data
+    /// (formulation Sec. 4: it is treated as fully failed) and is returned.
+    fn refresh_owners(&mut self, disc: &Discretization, owners: &[usize]) -> Vec<usize> {
+        let mut singular = Vec::new();
+        for &i in owners {
+            let (kappa, mu) = (self.owners[i].kappa, self.owners[i].mu);
+            let any_intact = disc.bonds.owned_by(i).any(|b| disc.bonds.intact[b]);
+            self.owners[i] = match owner_data(disc, i, kappa, mu) {
+                Some(o) => o,
+                None => {
+                    if any_intact {
+                        singular.push(i);
+                    }
+                    Owner::failed(kappa, mu)
+                }
+            };
+        }
+        singular
     }
 
     fn stress(&self, disc: &Discretization, owner: usize, u: &[[f64; 3]]) -> Option<Block> {
