@@ -1566,6 +1566,7 @@ fn gap_point_file_spacing_overflow_is_rejected() {
         name: "soft".into(),
         youngs_modulus: 1e9,
         poisson_ratio: 0.25,
+        fracture: None,
     }];
     let file = PointFile {
         path: PathBuf::from("pts.xyz"),

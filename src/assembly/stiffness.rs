@@ -101,6 +101,29 @@ impl Stiffness {
         (skew / total).sqrt()
     }
 
+    /// `y = K x`, in parallel over rows: row `c` of `K` is column `c` of `Kᵀ`,
+    /// read through `transpose` (the positions of the transposed entries), or
+    /// directly when `transpose` is `None` (for a symmetric `K`).
+    pub fn mul_parallel(
+        &self,
+        pattern: &Pattern,
+        transpose: Option<&[usize]>,
+        x: &[f64],
+    ) -> Vec<f64> {
+        use rayon::prelude::*;
+        let mut y = vec![0.0; self.n];
+        y.par_iter_mut().enumerate().for_each(|(c, yc)| {
+            let range = pattern.col_ptr[c]..pattern.col_ptr[c + 1];
+            *yc = match transpose {
+                Some(t) => range
+                    .map(|k| self.values[t[k]] * x[pattern.row_idx[k]])
+                    .sum(),
+                None => range.map(|k| self.values[k] * x[pattern.row_idx[k]]).sum(),
+            };
+        });
+        y
+    }
+
     /// `y = K x`.
     pub fn mul(&self, pattern: &Pattern, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];

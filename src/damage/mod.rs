@@ -104,14 +104,13 @@ impl Criterion {
                     Some(FractureParameter::Energy(g0)) => match scene.model {
                         ModelKind::BondBased => {
                             // C per volume² including thickness/area; per unit thickness × t.
-                            let c = 2.0
-                                * bond_based::micromodulus(
+                            let c =
+                                2.0 * bond_based::micromodulus(
                                     scene.dimension,
                                     material,
                                     horizon,
                                     scene.thickness,
-                                )
-                                * if scene.dimension == Dimension::Three {
+                                ) * if scene.dimension == Dimension::Three {
                                     1.0
                                 } else {
                                     scene.thickness
@@ -132,11 +131,10 @@ impl Criterion {
                 }
             })
             .collect();
-        let protected = p
-            .x
-            .iter()
-            .map(|x| scene.fracture.no_fail.iter().any(|b| b.contains(x)))
-            .collect();
+        let protected =
+            p.x.iter()
+                .map(|x| scene.fracture.no_fail.iter().any(|b| b.contains(x)))
+                .collect();
         Criterion {
             critical,
             protected,

@@ -12,20 +12,12 @@ use crate::discretization::{self, Discretization};
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
-use crate::model::{Coupling, Model};
-use crate::scene::{Dimension, ModelKind, Scene, SolverMethod};
-use crate::solve::{
-    refine, relative_residual, Cholesky, FactorError, LinearSolver, PivotStats, SparseLu,
-};
+use crate::model::Model;
+use crate::scene::{Dimension, ModelKind, Scene};
+use crate::solve::pipeline::{Pipeline, SolverSettings};
+use crate::solve::PivotStats;
 use serde::Serialize;
 use std::time::Instant;
-
-/// GMRES iterations allowed with the bond-based preconditioner before switching
-/// to the symmetric part of the shear tangent.
-const PRECONDITIONER_BUDGET: usize = 120;
-
-/// Largest relative residual accepted from a direct solve.
-pub const RESIDUAL_THRESHOLD: f64 = 1e-8;
 
 /// Wall time per phase in seconds.
 #[derive(Debug, Clone, Default, Serialize)]
@@ -240,167 +232,43 @@ pub fn solve_with<M: Model>(
         loads,
         mut timings,
     } = prepared;
-    let d = disc.d;
+
+    // The symbolic analysis needs only the pattern: it runs before any value is
+    // assembled, so a factor too large for memory is refused early.
+    let mut pipeline = Pipeline::analyse(
+        &disc,
+        &dofs,
+        model.coupling(),
+        SolverSettings::of(scene),
+        Some(BondBased::new(
+            &disc,
+            scene.dimension,
+            &scene.materials,
+            scene.thickness,
+        )),
+    )?;
+    timings.pattern = pipeline.pattern_seconds;
+    timings.symbolic_factorization = pipeline.symbolic_seconds;
 
     let t = Instant::now();
-    let pattern = Pattern::new(&disc, &dofs, model.coupling());
-    // GMRES factorises the symmetric part restricted to bonded pairs (the star
-    // pattern); the other methods factorise K itself.
-    let star = (scene.solver == SolverMethod::Gmres && model.coupling() == Coupling::Family)
-        .then(|| Pattern::new(&disc, &dofs, Coupling::Star));
-    let factored_pattern = star.as_ref().unwrap_or(&pattern);
-    timings.pattern = t.elapsed().as_secs_f64();
-
-    // The symbolic Cholesky factorisation needs only the pattern: it runs before
-    // any value is assembled, so a factor too large for memory is refused early.
-    let t = Instant::now();
-    let cholesky = match scene.solver {
-        SolverMethod::Cholesky | SolverMethod::Gmres => {
-            let chol = Cholesky::analyse(factored_pattern.symbolic())?;
-            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
-            Some(chol)
-        }
-        SolverMethod::Lu => None,
-    };
-    let symbolic_time = t.elapsed().as_secs_f64();
-
-    let t = Instant::now();
-    let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
-    let f_prescribed = internal_forces(model, &disc, &dofs.prescribed, true);
-    let rhs: Vec<f64> = dofs
-        .free_dofs
-        .iter()
-        .map(|&(i, c)| f_ext[i as usize][c as usize] + f_prescribed[i as usize][c as usize])
-        .collect();
+    let stiffness = Stiffness::assemble(model, &disc, &dofs, pipeline.pattern());
+    let rhs = right_hand_side(model, &disc, &dofs, &f_ext, 1.0);
     timings.assembly = t.elapsed().as_secs_f64();
 
+    let asymmetry = pipeline.asymmetry(&stiffness);
+    let solved = pipeline.solve(&disc, &dofs, &stiffness, &rhs)?;
+    let report = &solved.report;
+    timings.numeric_factorization = report.factor_seconds;
+    if report.refinement_steps > 0 {
+        eprintln!(
+            "note: {} step(s) of iterative refinement brought the relative residual to {:.1e}",
+            report.refinement_steps, report.residual
+        );
+    }
     let t = Instant::now();
-    let transpose = Stiffness::transpose_positions(&pattern);
-    let asymmetry = stiffness.asymmetry(&transpose);
-    let symmetric = (scene.solver == SolverMethod::Gmres).then(|| match &star {
-        Some(star) => {
-            let bb = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-            Stiffness::assemble(&bb, &disc, &dofs, star)
-        }
-        None => stiffness.symmetric_part(&transpose),
-    });
-    let factored = symmetric
-        .as_ref()
-        .unwrap_or(&stiffness)
-        .view(factored_pattern);
-    let mut solver = match cholesky {
-        // The cheap bond-based preconditioner gets a short budget (see below).
-        Some(chol) if scene.solver == SolverMethod::Gmres => LinearSolver::Gmres(
-            chol,
-            if star.is_some() {
-                PRECONDITIONER_BUDGET
-            } else {
-                600
-            },
-        ),
-        Some(chol) => LinearSolver::Cholesky(chol),
-        None => LinearSolver::Lu(SparseLu::analyse(factored)?),
-    };
-    timings.symbolic_factorization = symbolic_time + t.elapsed().as_secs_f64();
-
-    let t = Instant::now();
-    solver
-        .factorize(factored)
-        .map_err(|e| factor_error(e, &dofs, &disc))?;
-    timings.numeric_factorization = t.elapsed().as_secs_f64();
-
-    let t = Instant::now();
-    let apply = |v: &[f64]| stiffness.mul(&pattern, v);
-    let (mut x, mut iterative) = solver.solve(&apply, &rhs);
-    if let (Some(first), Some(_)) = (iterative, &star) {
-        if !first.converged {
-            // Near incompressibility the bond-based preconditioner (which has no
-            // Poisson ratio) stalls: continue with the full symmetric part.
-            eprintln!(
-                "note: GMRES with the bond-based preconditioner stopped at residual {:.1e} after {} iterations; \
-                 continuing with the Cholesky factor of the symmetric part",
-                first.relative_residual, first.iterations
-            );
-            let full = stiffness.symmetric_part(&transpose);
-            let mut chol = Cholesky::analyse(pattern.symbolic())?;
-            crate::solve::check_memory(chol.factor_bytes(), scene.memory_limit_bytes)?;
-            let fallback = match chol.factorize(full.view(&pattern)) {
-                Ok(()) => LinearSolver::Gmres(chol, 600),
-                Err(FactorError::NonPositivePivot(_) | FactorError::NearlySingular(..)) => {
-                    // Possible with the gradient dilatation near ν = 1/2: K is
-                    // regular but its symmetric part is indefinite.
-                    eprintln!(
-                        "note: the symmetric part of the tangent is not positive definite; \
-                         solving with sparse LU instead"
-                    );
-                    drop(chol);
-                    let mut lu = LinearSolver::Lu(SparseLu::analyse(stiffness.view(&pattern))?);
-                    lu.factorize(stiffness.view(&pattern))
-                        .map_err(|e| factor_error(e, &dofs, &disc))?;
-                    lu
-                }
-                Err(e) => return Err(factor_error(e, &dofs, &disc)),
-            };
-            let kx = apply(&x);
-            let r: Vec<f64> = rhs.iter().zip(&kx).map(|(b, k)| b - k).collect();
-            let (dx, second) = fallback.solve(&apply, &r);
-            x.iter_mut().zip(&dx).for_each(|(xi, di)| *xi += di);
-            iterative = second.map(|s| crate::solve::gmres::GmresReport {
-                iterations: first.iterations + s.iterations,
-                ..s
-            });
-            solver = fallback;
-        }
-    }
-    if x.iter().any(|v| !v.is_finite()) {
-        return Err(NumericalError::NonFinite {
-            what: "the displacement solution".into(),
-        }
-        .into());
-    }
-    // Direct solvers are refined with their own factor when the residual is
-    // above REFINE_THRESHOLD; GMRES already iterates to its tolerance.
-    let (residual, refinement_steps) = if iterative.is_none() {
-        refine(
-            &apply,
-            &|v: &mut [f64]| solver.solve_in_place(v),
-            &rhs,
-            &mut x,
-        )
-    } else {
-        (relative_residual(&apply(&x), &rhs), 0)
-    };
-    if refinement_steps > 0 {
-        eprintln!("note: {refinement_steps} step(s) of iterative refinement brought the relative residual to {residual:.1e}");
-    }
-    if !(residual <= RESIDUAL_THRESHOLD) {
-        return Err(NumericalError::ResidualTooLarge {
-            residual,
-            threshold: RESIDUAL_THRESHOLD,
-            refinement_steps,
-        }
-        .into());
-    }
-    let u = dofs.expand(&x);
-    let f_int = internal_forces(model, &disc, &u, true);
-    let reactions = dofs
-        .sets
-        .iter()
-        .map(|set| {
-            let mut force = [0.0; 3];
-            for &i in &set.points {
-                for c in 0..d {
-                    force[c] -= f_int[i][c] + f_ext[i][c];
-                }
-            }
-            Reaction {
-                name: set.name.clone(),
-                points: set.points.len(),
-                force,
-            }
-        })
-        .collect();
-    timings.solve = t.elapsed().as_secs_f64();
+    let u = dofs.expand(&solved.x);
+    let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
+    timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
     let stress = scene.output.stress.then(|| {
         use rayon::prelude::*;
         (0..disc.points.len())
@@ -422,15 +290,16 @@ pub fn solve_with<M: Model>(
         points: disc.points.len(),
         bonds: disc.bonds.len(),
         dofs: dofs.n_free(),
-        prescribed_dofs: disc.points.len() * d - dofs.n_free(),
-        nnz_k: pattern.nnz(),
-        nnz_l: solver.nnz_factor(),
-        pivots: solver.pivot_stats(),
+        prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
+        nnz_k: pipeline.pattern().nnz(),
+        nnz_l: pipeline.nnz_factor(),
+        pivots: pipeline.pivot_stats(),
         asymmetry,
-        refinement_steps,
-        gmres: iterative,
+        refinement_steps: report.refinement_steps,
+        gmres: report.gmres,
         removed_points: disc.removed_isolated,
     };
+    let residual = report.residual;
     Ok(StaticSolution {
         disc,
         dofs,
@@ -442,44 +311,59 @@ pub fn solve_with<M: Model>(
         counts,
         stress,
         system: LinearSystem {
-            pattern,
+            pattern: pipeline.into_pattern(),
             stiffness,
             rhs,
         },
     })
 }
 
-fn factor_error(e: FactorError, dofs: &DofMap, disc: &Discretization) -> Error {
-    let locate = |k: usize| {
-        let (i, c) = dofs.free_dofs[k];
-        (i as usize, c as usize)
-    };
-    match e {
-        FactorError::NonPositivePivot(k) => {
-            let (point, component) = locate(k);
-            NumericalError::NonPositivePivot {
-                point,
-                component,
-                position: disc.points.x[point],
+/// The right-hand side of the reduced system for the loads and prescribed
+/// displacements scaled by `load_factor`: `b = λ (f_ext + F_int(u_prescribed))`
+/// on the free unknowns (the linearised `F_int = −K u` moves the prescribed
+/// columns to the right-hand side).
+pub fn right_hand_side<M: Model>(
+    model: &M,
+    disc: &Discretization,
+    dofs: &DofMap,
+    f_ext: &[[f64; 3]],
+    load_factor: f64,
+) -> Vec<f64> {
+    let f_prescribed = internal_forces(model, disc, &dofs.prescribed, true);
+    dofs.free_dofs
+        .iter()
+        .map(|&(i, c)| {
+            load_factor * (f_ext[i as usize][c as usize] + f_prescribed[i as usize][c as usize])
+        })
+        .collect()
+}
+
+/// The reaction of every constrained set for displacements `u` under the
+/// external forces `f_ext` scaled by `load_factor`: the force the supports
+/// exert on the body, `−Σ_set (F_int + f_ext)` (formulation Sec. 7).
+pub fn reactions<M: Model>(
+    model: &M,
+    disc: &Discretization,
+    dofs: &DofMap,
+    f_ext: &[[f64; 3]],
+    u: &[[f64; 3]],
+    load_factor: f64,
+) -> Vec<Reaction> {
+    let f_int = internal_forces(model, disc, u, true);
+    dofs.sets
+        .iter()
+        .map(|set| {
+            let mut force = [0.0; 3];
+            for &i in &set.points {
+                for c in 0..disc.d {
+                    force[c] -= f_int[i][c] + load_factor * f_ext[i][c];
+                }
             }
-            .into()
-        }
-        FactorError::Singular(k) => {
-            let (point, component) = locate(k);
-            NumericalError::StructurallySingular { point, component }.into()
-        }
-        FactorError::NearlySingular(k, ratio) => {
-            let (point, component) = locate(k);
-            NumericalError::NearlySingular {
-                point,
-                component,
-                position: disc.points.x[point],
-                ratio,
+            Reaction {
+                name: set.name.clone(),
+                points: set.points.len(),
+                force,
             }
-            .into()
-        }
-        FactorError::Generic => {
-            NumericalError::Solver("factorisation failed (out of memory?)".into()).into()
-        }
-    }
+        })
+        .collect()
 }

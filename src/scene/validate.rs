@@ -460,7 +460,10 @@ impl Scene {
             for (key, present) in [
                 ("output.every", output.every.is_some()),
                 ("output.steps", !output.steps.is_empty()),
-                ("solver.refactor_iterations", spec.solver.refactor_iterations.is_some()),
+                (
+                    "solver.refactor_iterations",
+                    spec.solver.refactor_iterations.is_some(),
+                ),
             ] {
                 if present {
                     return Err(InputError::new(
@@ -638,7 +641,10 @@ fn fracture_parameter(
     if given.len() > 1 {
         return Err(InputError::new(
             format!("{field}.{}", given[1].0),
-            format!("give one fracture parameter per material, not both {key} and {}", given[1].0),
+            format!(
+                "give one fracture parameter per material, not both {key} and {}",
+                given[1].0
+            ),
         ));
     }
     if spec.quasi_static.is_none() {
@@ -723,7 +729,10 @@ fn fracture_runs(
         if present && !applies {
             Err(InputError::new(
                 format!("quasi_static.{key}"),
-                format!("applies to strategy {to} only (strategy is {:?})", q.strategy),
+                format!(
+                    "applies to strategy {to} only (strategy is {:?})",
+                    q.strategy
+                ),
             ))
         } else {
             Ok(())
@@ -731,9 +740,24 @@ fn fracture_runs(
     };
     let stepped_names = "\"all\" or \"most_critical\"";
     only("steps", q.steps.is_some(), stepped, stepped_names)?;
-    only("max_broken_per_step", q.max_broken_per_step.is_some(), stepped, stepped_names)?;
-    only("min_step_fraction", q.min_step_fraction.is_some(), stepped, stepped_names)?;
-    only("max_resolves", q.max_resolves.is_some(), stepped, stepped_names)?;
+    only(
+        "max_broken_per_step",
+        q.max_broken_per_step.is_some(),
+        stepped,
+        stepped_names,
+    )?;
+    only(
+        "min_step_fraction",
+        q.min_step_fraction.is_some(),
+        stepped,
+        stepped_names,
+    )?;
+    only(
+        "max_resolves",
+        q.max_resolves.is_some(),
+        stepped,
+        stepped_names,
+    )?;
     only("max_events", q.max_events.is_some(), !stepped, "\"event\"")?;
     only(
         "tolerance",

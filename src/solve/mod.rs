@@ -6,7 +6,9 @@
 //! 0-based on the supernodal path; it is mapped back through the fill-reducing
 //! permutation here.
 
+pub mod cg;
 pub mod gmres;
+pub mod pipeline;
 
 use crate::error::{MemoryLimit, NumericalError};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -222,9 +224,9 @@ pub struct SparseLu {
 
 impl SparseLu {
     /// Symbolic analysis of the pattern.
-    pub fn analyse(matrix: SparseColMatRef<'_, usize, f64>) -> Result<Self, NumericalError> {
-        let symbolic = SymbolicLu::try_new(matrix.symbolic())
-            .map_err(|e| NumericalError::Solver(format!("{e:?}")))?;
+    pub fn analyse(structure: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, NumericalError> {
+        let symbolic =
+            SymbolicLu::try_new(structure).map_err(|e| NumericalError::Solver(format!("{e:?}")))?;
         Ok(Self {
             symbolic,
             numeric: None,
@@ -261,86 +263,8 @@ impl SparseLu {
     }
 }
 
-/// The linear solvers behind one interface.
-pub enum LinearSolver {
-    /// Sparse Cholesky.
-    Cholesky(Cholesky),
-    /// Sparse LU.
-    Lu(SparseLu),
-    /// GMRES preconditioned by the Cholesky factor of a symmetric approximation of
-    /// `K` (which the caller passes to `factorize`), with an iteration cap.
-    Gmres(Cholesky, usize),
-}
-
-/// GMRES settings: relative tolerance and restart length.
+/// Relative residual GMRES and CG aim at.
 pub const GMRES_TOLERANCE: f64 = 1e-12;
-const GMRES_RESTART: usize = 60;
-
-impl LinearSolver {
-    /// Numeric factorisation.
-    pub fn factorize(
-        &mut self,
-        matrix: SparseColMatRef<'_, usize, f64>,
-    ) -> Result<(), FactorError> {
-        match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.factorize(matrix),
-            LinearSolver::Lu(s) => s.factorize(matrix),
-        }
-    }
-
-    /// Solves `K x = b`; `apply(v) = K v` (used by GMRES). Returns the GMRES
-    /// report when iterating.
-    pub fn solve(
-        &self,
-        apply: &dyn Fn(&[f64]) -> Vec<f64>,
-        b: &[f64],
-    ) -> (Vec<f64>, Option<gmres::GmresReport>) {
-        match self {
-            LinearSolver::Gmres(chol, max_iterations) => {
-                let mut x = vec![0.0; b.len()];
-                let report = gmres::gmres(
-                    apply,
-                    &|v: &mut [f64]| chol.solve_in_place(v),
-                    b,
-                    &mut x,
-                    GMRES_TOLERANCE,
-                    GMRES_RESTART,
-                    *max_iterations,
-                );
-                (x, Some(report))
-            }
-            _ => {
-                let mut x = b.to_vec();
-                self.solve_in_place(&mut x);
-                (x, None)
-            }
-        }
-    }
-
-    /// Solves in place.
-    pub fn solve_in_place(&self, b: &mut [f64]) {
-        match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.solve_in_place(b),
-            LinearSolver::Lu(s) => s.solve_in_place(b),
-        }
-    }
-
-    /// Pivot statistics of the last Cholesky factorisation.
-    pub fn pivot_stats(&self) -> Option<PivotStats> {
-        match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => s.pivot_stats,
-            LinearSolver::Lu(_) => None,
-        }
-    }
-
-    /// Stored entries of the factor(s), when known.
-    pub fn nnz_factor(&self) -> Option<usize> {
-        match self {
-            LinearSolver::Cholesky(s) | LinearSolver::Gmres(s, _) => Some(s.nnz_l()),
-            LinearSolver::Lu(_) => None,
-        }
-    }
-}
 
 /// Memory the operating system reports as available (Linux `MemAvailable`), if known.
 pub fn available_memory_bytes() -> Option<usize> {

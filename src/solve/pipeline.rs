@@ -1,0 +1,615 @@
+//! One solver pipeline for every driver: the symbolic analysis once per
+//! pattern, numeric factorisation, solve with iterative refinement and a
+//! residual check, and re-solves after a small change of `K` (bonds broke) with
+//! the previous factor as preconditioner.
+//!
+//! Routes (`solver.method`):
+//!
+//! | method | fresh solve | re-solve with the old factor |
+//! |---|---|---|
+//! | `cholesky` | `K = L Lᵀ`, triangular solves, refinement | CG preconditioned by the old `L Lᵀ` |
+//! | `lu` | `K = L U`, triangular solves, refinement | GMRES preconditioned by the old `L U` |
+//! | `gmres` | GMRES on `K` preconditioned by the Cholesky factor of a symmetric surrogate | GMRES with the old surrogate factor |
+//!
+//! The surrogate of the `gmres` route is the bond-based stiffness on the bonded
+//! pairs (shear model: its pattern is the bond graph, far sparser than `K`'s
+//! neighbours-of-neighbours pattern), or `(K + Kᵀ)/2`. When the bond-based
+//! surrogate stalls (near incompressibility it has no Poisson ratio), the route
+//! switches to the Cholesky factor of `(K + Kᵀ)/2`, and to LU when that is not
+//! positive definite; the switch is kept for later solves and said on stderr.
+//!
+//! **Re-solves.** The pattern never changes when bonds break (broken bonds keep
+//! their slots), so the symbolic analysis is done once. If `k` bonds broke
+//! since the factorisation, `K_new = K_old − ΔK` with `ΔK` of low rank and the
+//! preconditioned operator has few distinct eigenvalues: CG converges in about
+//! `rank(ΔK) + 1` iterations (a bond-based bond is a rank-one term). Past a
+//! threshold of iterations the matrix is factorised afresh: by default the
+//! number of iterations that costs as much as half a fresh factorisation and
+//! solve, both measured in this run (`solver.refactor_iterations` overrides it).
+
+use super::cg::pcg;
+use super::gmres::{gmres, GmresReport};
+use super::{
+    check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
+    GMRES_TOLERANCE,
+};
+use crate::assembly::dofs::DofMap;
+use crate::assembly::pattern::Pattern;
+use crate::assembly::stiffness::Stiffness;
+use crate::discretization::Discretization;
+use crate::error::{Error, NumericalError};
+use crate::model::bond_based::BondBased;
+use crate::model::Coupling;
+use crate::scene::{Scene, SolverMethod};
+use serde::Serialize;
+use std::time::Instant;
+
+/// Largest relative residual accepted from any solve.
+pub const RESIDUAL_THRESHOLD: f64 = 1e-8;
+
+/// GMRES iterations allowed with the bond-based surrogate before switching to
+/// the symmetric part of the shear tangent.
+const SURROGATE_BUDGET: usize = 120;
+
+/// GMRES iterations allowed with the factor of the symmetric part.
+const SYMMETRIC_PART_BUDGET: usize = 600;
+
+/// GMRES restart length.
+const GMRES_RESTART: usize = 60;
+
+/// Bounds of the automatic refactorisation threshold (iterations).
+const AUTO_REFACTOR_MIN: usize = 4;
+const AUTO_REFACTOR_MAX: usize = 1000;
+
+/// What the pipeline needs from a scene.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SolverSettings {
+    /// Route.
+    pub method: SolverMethod,
+    /// User limit on a factor's size (bytes).
+    pub memory_limit_bytes: Option<f64>,
+    /// Re-solve iterations before refactorising (None: from measured costs).
+    pub refactor_iterations: Option<usize>,
+}
+
+impl SolverSettings {
+    /// The scene's solver settings.
+    pub fn of(scene: &Scene) -> Self {
+        Self {
+            method: scene.solver,
+            memory_limit_bytes: scene.memory_limit_bytes,
+            refactor_iterations: scene.refactor_iterations,
+        }
+    }
+}
+
+/// How a solve was done.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Route {
+    /// A fresh numeric factorisation, then the solve.
+    Factor,
+    /// A Krylov solve preconditioned by the previous factor.
+    Reuse,
+}
+
+impl Route {
+    /// The name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Route::Factor => "factor",
+            Route::Reuse => "reuse",
+        }
+    }
+}
+
+/// What one solve did and cost.
+#[derive(Debug, Clone, Serialize)]
+pub struct SolveReport {
+    /// Fresh factorisation or reuse of the old factor.
+    pub route: Route,
+    /// Krylov iterations (0 for a direct solve).
+    pub iterations: usize,
+    /// Iterative-refinement steps after a direct solve.
+    pub refinement_steps: usize,
+    /// `‖K x − b‖ / ‖b‖`.
+    pub residual: f64,
+    /// Numeric factorisation time (s), 0 for a reuse.
+    pub factor_seconds: f64,
+    /// Solve time (s): triangular solves, Krylov iterations, refinement,
+    /// residual; for a reuse that fell back to a factorisation, the failed
+    /// attempt too.
+    pub solve_seconds: f64,
+    /// The GMRES report, when GMRES ran.
+    pub gmres: Option<GmresReport>,
+}
+
+/// A solution of the reduced system and how it was obtained.
+#[derive(Debug, Clone)]
+pub struct Solved {
+    /// Free unknowns.
+    pub x: Vec<f64>,
+    /// What the solve did.
+    pub report: SolveReport,
+}
+
+/// What the current factor is a factor of.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Source {
+    /// `K` itself (Cholesky or LU).
+    Matrix,
+    /// `(K + Kᵀ)/2` (GMRES).
+    SymmetricPart,
+    /// The bond-based stiffness on the bond pattern (GMRES on the shear model).
+    Surrogate,
+}
+
+enum Factor {
+    Cholesky(Cholesky),
+    Lu(SparseLu),
+}
+
+impl Factor {
+    fn solve_in_place(&self, b: &mut [f64]) {
+        match self {
+            Factor::Cholesky(c) => c.solve_in_place(b),
+            Factor::Lu(l) => l.solve_in_place(b),
+        }
+    }
+}
+
+/// Measured costs that decide when a re-solve should refactorise.
+#[derive(Debug, Clone, Copy, Default)]
+struct Costs {
+    /// Last fresh factorisation plus its solve (s).
+    fresh_seconds: f64,
+    /// One Krylov iteration (product and preconditioner), last measured (s).
+    iteration_seconds: f64,
+    /// GMRES iterations a fresh surrogate factor needed (0 for direct routes).
+    fresh_iterations: usize,
+    /// Residual the last fresh solve reached (the round-off floor of this system).
+    fresh_residual: f64,
+}
+
+/// The solver pipeline of one discretisation.
+pub struct Pipeline {
+    settings: SolverSettings,
+    pattern: Pattern,
+    /// Transposed positions of `K`'s entries (non-symmetric `K`, symmetric part).
+    transpose: Option<Vec<usize>>,
+    surrogate: Option<(Pattern, BondBased)>,
+    source: Source,
+    factor: Factor,
+    factored: bool,
+    symmetric: bool,
+    costs: Costs,
+    /// Symbolic analysis time (s).
+    pub symbolic_seconds: f64,
+    /// Sparsity pattern time (s).
+    pub pattern_seconds: f64,
+}
+
+impl Pipeline {
+    /// Builds the pattern of `K` for `coupling` and runs the symbolic analysis of
+    /// the route, before any value is assembled, so that a factor too large for
+    /// memory is refused early. `surrogate` is the bond-based model the `gmres`
+    /// route factorises for a `Family` coupling.
+    pub fn analyse(
+        disc: &Discretization,
+        dofs: &DofMap,
+        coupling: Coupling,
+        settings: SolverSettings,
+        surrogate: Option<BondBased>,
+    ) -> Result<Self, Error> {
+        let t = Instant::now();
+        let pattern = Pattern::new(disc, dofs, coupling);
+        let surrogate = match (settings.method, coupling, surrogate) {
+            (SolverMethod::Gmres, Coupling::Family, Some(model)) => {
+                Some((Pattern::new(disc, dofs, Coupling::Star), model))
+            }
+            _ => None,
+        };
+        let pattern_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let (source, factor) = match settings.method {
+            SolverMethod::Lu => (
+                Source::Matrix,
+                Factor::Lu(SparseLu::analyse(pattern.symbolic())?),
+            ),
+            SolverMethod::Cholesky | SolverMethod::Gmres => {
+                let (source, structure) = match (&surrogate, settings.method) {
+                    (Some((star, _)), _) => (Source::Surrogate, star.symbolic()),
+                    (None, SolverMethod::Gmres) => (Source::SymmetricPart, pattern.symbolic()),
+                    _ => (Source::Matrix, pattern.symbolic()),
+                };
+                let chol = Cholesky::analyse(structure)?;
+                check_memory(chol.factor_bytes(), settings.memory_limit_bytes)?;
+                (source, Factor::Cholesky(chol))
+            }
+        };
+        Ok(Self {
+            settings,
+            transpose: None,
+            symmetric: coupling == Coupling::Star,
+            pattern,
+            surrogate,
+            source,
+            factor,
+            factored: false,
+            costs: Costs::default(),
+            symbolic_seconds: t.elapsed().as_secs_f64(),
+            pattern_seconds,
+        })
+    }
+
+    /// The pattern of `K` (assemble on it).
+    pub fn pattern(&self) -> &Pattern {
+        &self.pattern
+    }
+
+    /// Gives the pattern back (for export after the last solve).
+    pub fn into_pattern(self) -> Pattern {
+        self.pattern
+    }
+
+    /// Stored entries of the current factor (Cholesky), if known.
+    pub fn nnz_factor(&self) -> Option<usize> {
+        match &self.factor {
+            Factor::Cholesky(c) => Some(c.nnz_l()),
+            Factor::Lu(_) => None,
+        }
+    }
+
+    /// Pivot statistics of the last Cholesky factorisation.
+    pub fn pivot_stats(&self) -> Option<PivotStats> {
+        match &self.factor {
+            Factor::Cholesky(c) => c.pivot_stats,
+            Factor::Lu(_) => None,
+        }
+    }
+
+    /// `‖K − Kᵀ‖_F / ‖K‖_F`.
+    pub fn asymmetry(&mut self, k: &Stiffness) -> f64 {
+        k.asymmetry(self.transpose())
+    }
+
+    fn transpose(&mut self) -> &[usize] {
+        if self.transpose.is_none() {
+            self.transpose = Some(Stiffness::transpose_positions(&self.pattern));
+        }
+        self.transpose.as_deref().expect("just computed")
+    }
+
+    /// `K x`, in parallel over columns.
+    fn product(&self, k: &Stiffness, x: &[f64]) -> Vec<f64> {
+        let transpose = if self.symmetric {
+            None
+        } else {
+            self.transpose.as_deref()
+        };
+        k.mul_parallel(&self.pattern, transpose, x)
+    }
+
+    /// Numeric factorisation of the current source for `k`.
+    fn factorize(
+        &mut self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+    ) -> Result<(), Error> {
+        self.factored = false;
+        let surrogate_values;
+        let symmetric_values;
+        let matrix = match self.source {
+            Source::Matrix => k.view(&self.pattern),
+            Source::SymmetricPart => {
+                symmetric_values = k.symmetric_part(self.transpose());
+                symmetric_values.view(&self.pattern)
+            }
+            Source::Surrogate => {
+                let (star, model) = self.surrogate.as_ref().expect("surrogate route");
+                surrogate_values = Stiffness::assemble(model, disc, dofs, star);
+                surrogate_values.view(star)
+            }
+        };
+        let result = match &mut self.factor {
+            Factor::Cholesky(c) => c.factorize(matrix),
+            Factor::Lu(l) => l.factorize(matrix),
+        };
+        result.map_err(|e| factor_error(e, dofs, disc))?;
+        self.factored = true;
+        Ok(())
+    }
+
+    /// Switches the `gmres` route from its current factor to the next one:
+    /// surrogate → symmetric part → LU of `K`.
+    fn fall_back(
+        &mut self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+    ) -> Result<(), Error> {
+        if self.source == Source::Surrogate {
+            let mut chol = Cholesky::analyse(self.pattern.symbolic())?;
+            check_memory(chol.factor_bytes(), self.settings.memory_limit_bytes)?;
+            let full = k.symmetric_part(self.transpose());
+            match chol.factorize(full.view(&self.pattern)) {
+                Ok(()) => {
+                    self.source = Source::SymmetricPart;
+                    self.factor = Factor::Cholesky(chol);
+                    self.factored = true;
+                    return Ok(());
+                }
+                Err(FactorError::NonPositivePivot(_) | FactorError::NearlySingular(..)) => {
+                    // Possible with the gradient dilatation near ν = 1/2: K is
+                    // regular but its symmetric part is indefinite.
+                    eprintln!(
+                        "note: the symmetric part of the tangent is not positive definite; \
+                         solving with sparse LU instead"
+                    );
+                }
+                Err(e) => return Err(factor_error(e, dofs, disc)),
+            }
+        }
+        self.source = Source::Matrix;
+        self.factor = Factor::Lu(SparseLu::analyse(self.pattern.symbolic())?);
+        self.symmetric = false;
+        self.factorize(disc, dofs, k)
+    }
+
+    /// Factorises `k` afresh and solves `K x = rhs`, with refinement (direct
+    /// routes) and the residual check. The transposed positions are built here
+    /// when the route needs them.
+    pub fn solve(
+        &mut self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+        rhs: &[f64],
+    ) -> Result<Solved, Error> {
+        if !self.symmetric {
+            self.transpose();
+        }
+        let t = Instant::now();
+        self.factorize(disc, dofs, k)?;
+        let factor_seconds = t.elapsed().as_secs_f64();
+        let t = Instant::now();
+        let mut x = vec![0.0; rhs.len()];
+        let mut report = None;
+        let (residual, refinement_steps);
+        if self.source == Source::Matrix {
+            x.copy_from_slice(rhs);
+            self.factor.solve_in_place(&mut x);
+            let apply = |v: &[f64]| self.product(k, v);
+            let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
+            (residual, refinement_steps) = refine(&apply, &solve, rhs, &mut x);
+            self.costs.fresh_iterations = 0;
+        } else {
+            let mut first = self.gmres(k, rhs, &mut x, self.budget());
+            if !first.converged && self.source == Source::Surrogate {
+                // Near incompressibility the bond-based surrogate (which has no
+                // Poisson ratio) stalls: continue with the symmetric part.
+                eprintln!(
+                    "note: GMRES with the bond-based preconditioner stopped at residual {:.1e} \
+                     after {} iterations; continuing with the Cholesky factor of the symmetric part",
+                    first.relative_residual, first.iterations
+                );
+                self.fall_back(disc, dofs, k)?;
+                let second = if self.source == Source::Matrix {
+                    let ax = self.product(k, &x);
+                    let mut dx: Vec<f64> = rhs.iter().zip(&ax).map(|(b, a)| b - a).collect();
+                    self.factor.solve_in_place(&mut dx);
+                    x.iter_mut().zip(&dx).for_each(|(xi, di)| *xi += di);
+                    let apply = |v: &[f64]| self.product(k, v);
+                    let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
+                    let (r, _) = refine(&apply, &solve, rhs, &mut x);
+                    GmresReport {
+                        iterations: 0,
+                        relative_residual: r,
+                        converged: r <= GMRES_TOLERANCE,
+                        stagnated: false,
+                    }
+                } else {
+                    self.gmres(k, rhs, &mut x, self.budget())
+                };
+                first = GmresReport {
+                    iterations: first.iterations + second.iterations,
+                    ..second
+                };
+            }
+            self.costs.fresh_iterations = first.iterations;
+            residual = relative_residual(&self.product(k, &x), rhs);
+            refinement_steps = 0;
+            report = Some(first);
+        }
+        let solve_seconds = t.elapsed().as_secs_f64();
+        self.accept(&x, residual, refinement_steps)?;
+        self.costs.fresh_seconds = factor_seconds + solve_seconds;
+        self.costs.fresh_residual = residual;
+        if self.costs.iteration_seconds == 0.0 {
+            self.costs.iteration_seconds = self.measure_iteration(k, rhs);
+        }
+        Ok(Solved {
+            x,
+            report: SolveReport {
+                route: Route::Factor,
+                iterations: report.map_or(0, |r| r.iterations),
+                refinement_steps,
+                residual,
+                factor_seconds,
+                solve_seconds,
+                gmres: report,
+            },
+        })
+    }
+
+    /// Re-solves `K x = rhs` after `K` changed a little, from the initial guess
+    /// `x0`, with the previous factor as preconditioner (CG for a symmetric `K`
+    /// factorised by Cholesky, GMRES otherwise). Past the refactorisation
+    /// threshold it factorises afresh ([`Pipeline::solve`]).
+    pub fn resolve(
+        &mut self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+        rhs: &[f64],
+        x0: &[f64],
+    ) -> Result<Solved, Error> {
+        if !self.factored {
+            return self.solve(disc, dofs, k, rhs);
+        }
+        let cap = self.refactor_threshold();
+        // A re-solve aims at the usual tolerance, or at the round-off floor that
+        // the fresh solve of this system reached if that is higher.
+        let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
+        let t = Instant::now();
+        let mut x = x0.to_vec();
+        let cg = self.symmetric
+            && self.source == Source::Matrix
+            && matches!(self.factor, Factor::Cholesky(_));
+        let report = if cg {
+            let apply = |v: &[f64]| self.product(k, v);
+            let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+            pcg(&apply, &precondition, rhs, &mut x, tolerance, cap)
+        } else {
+            self.gmres_to(k, rhs, &mut x, cap, tolerance)
+        };
+        let elapsed = t.elapsed().as_secs_f64();
+        if report.iterations > 0 {
+            self.costs.iteration_seconds = elapsed / report.iterations as f64;
+        }
+        let residual = report.relative_residual;
+        if report.converged && x.iter().all(|v| v.is_finite()) {
+            return Ok(Solved {
+                x,
+                report: SolveReport {
+                    route: Route::Reuse,
+                    iterations: report.iterations,
+                    refinement_steps: 0,
+                    residual,
+                    factor_seconds: 0.0,
+                    solve_seconds: elapsed,
+                    gmres: (!cg).then_some(report),
+                },
+            });
+        }
+        let mut fresh = self.solve(disc, dofs, k, rhs)?;
+        fresh.report.solve_seconds += elapsed;
+        fresh.report.iterations += report.iterations;
+        Ok(fresh)
+    }
+
+    /// GMRES on `K` preconditioned by the current factor, from `x`.
+    fn gmres(&self, k: &Stiffness, rhs: &[f64], x: &mut [f64], budget: usize) -> GmresReport {
+        self.gmres_to(k, rhs, x, budget, GMRES_TOLERANCE)
+    }
+
+    fn gmres_to(
+        &self,
+        k: &Stiffness,
+        rhs: &[f64],
+        x: &mut [f64],
+        budget: usize,
+        tolerance: f64,
+    ) -> GmresReport {
+        let apply = |v: &[f64]| self.product(k, v);
+        let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+        gmres(
+            &apply,
+            &precondition,
+            rhs,
+            x,
+            tolerance,
+            GMRES_RESTART,
+            budget,
+        )
+    }
+
+    fn budget(&self) -> usize {
+        match self.source {
+            Source::Surrogate => SURROGATE_BUDGET,
+            _ => SYMMETRIC_PART_BUDGET,
+        }
+    }
+
+    /// Iterations a re-solve may spend before the matrix is factorised afresh.
+    pub fn refactor_threshold(&self) -> usize {
+        let extra = match self.settings.refactor_iterations {
+            Some(n) => n,
+            None => {
+                let c = &self.costs;
+                let break_even = if c.iteration_seconds > 0.0 {
+                    0.5 * c.fresh_seconds / c.iteration_seconds
+                } else {
+                    AUTO_REFACTOR_MIN as f64
+                };
+                (break_even as usize).clamp(AUTO_REFACTOR_MIN, AUTO_REFACTOR_MAX)
+            }
+        };
+        // A GMRES route needs its fresh iteration count even with a new factor.
+        self.costs.fresh_iterations + extra
+    }
+
+    /// Time of one Krylov iteration: a product with `K` and a preconditioner solve.
+    fn measure_iteration(&self, k: &Stiffness, rhs: &[f64]) -> f64 {
+        let t = Instant::now();
+        let mut v = self.product(k, rhs);
+        self.factor.solve_in_place(&mut v);
+        t.elapsed().as_secs_f64()
+    }
+
+    /// The checks every solution passes: finite, residual below the threshold.
+    fn accept(&self, x: &[f64], residual: f64, refinement_steps: usize) -> Result<(), Error> {
+        if x.iter().any(|v| !v.is_finite()) {
+            return Err(NumericalError::NonFinite {
+                what: "the displacement solution".into(),
+            }
+            .into());
+        }
+        if !(residual <= RESIDUAL_THRESHOLD) {
+            return Err(NumericalError::ResidualTooLarge {
+                residual,
+                threshold: RESIDUAL_THRESHOLD,
+                refinement_steps,
+            }
+            .into());
+        }
+        Ok(())
+    }
+}
+
+/// Maps a factorisation failure at a free unknown to the point it belongs to.
+pub fn factor_error(e: FactorError, dofs: &DofMap, disc: &Discretization) -> Error {
+    let locate = |k: usize| {
+        let (i, c) = dofs.free_dofs[k];
+        (i as usize, c as usize)
+    };
+    match e {
+        FactorError::NonPositivePivot(k) => {
+            let (point, component) = locate(k);
+            NumericalError::NonPositivePivot {
+                point,
+                component,
+                position: disc.points.x[point],
+            }
+            .into()
+        }
+        FactorError::Singular(k) => {
+            let (point, component) = locate(k);
+            NumericalError::StructurallySingular { point, component }.into()
+        }
+        FactorError::NearlySingular(k, ratio) => {
+            let (point, component) = locate(k);
+            NumericalError::NearlySingular {
+                point,
+                component,
+                position: disc.points.x[point],
+                ratio,
+            }
+            .into()
+        }
+        FactorError::Generic => {
+            NumericalError::Solver("factorisation failed (out of memory?)".into()).into()
+        }
+    }
+}
