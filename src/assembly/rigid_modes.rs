@@ -15,6 +15,23 @@ use crate::error::NumericalError;
 
 /// Errors if a connected body can move rigidly without changing any prescribed value.
 pub fn check(disc: &Discretization, dofs: &DofMap) -> Result<(), NumericalError> {
+    for points in bodies(disc) {
+        check_body(disc, dofs, &points)?;
+    }
+    Ok(())
+}
+
+/// The connected bodies (points linked by intact bonds) that some rigid motion
+/// moves without changing any prescribed value, each as its points.
+pub fn unheld_bodies(disc: &Discretization, dofs: &DofMap) -> Vec<Vec<usize>> {
+    bodies(disc)
+        .into_iter()
+        .filter(|points| check_body(disc, dofs, points).is_err())
+        .collect()
+}
+
+/// The connected components of the intact-bond graph.
+fn bodies(disc: &Discretization) -> Vec<Vec<usize>> {
     let n = disc.points.len();
     let mut parent: Vec<usize> = (0..n).collect();
     fn find(parent: &mut [usize], mut i: usize) -> usize {
@@ -40,10 +57,7 @@ pub fn check(disc: &Discretization, dofs: &DofMap) -> Result<(), NumericalError>
         let root = find(&mut parent, i);
         members.entry(root).or_default().push(i);
     }
-    for points in members.values() {
-        check_body(disc, dofs, points)?;
-    }
-    Ok(())
+    members.into_values().collect()
 }
 
 fn check_body(

@@ -62,6 +62,25 @@ impl Stiffness {
         position
     }
 
+    /// Holds the free unknowns flagged in `pinned` (by free index): their rows
+    /// and columns are zeroed and their diagonal set to `diagonal`, so with a
+    /// zero right-hand side they solve to zero. Exact for the other unknowns
+    /// when the pinned ones are coupled to no other (no intact bond to them).
+    pub fn pin(&mut self, pattern: &Pattern, pinned: &[bool], diagonal: f64) {
+        use rayon::prelude::*;
+        crate::assembly::split_at_offsets(&mut self.values, &pattern.col_ptr)
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(col, values)| {
+                let rows = &pattern.row_idx[pattern.col_ptr[col]..pattern.col_ptr[col + 1]];
+                for (v, &row) in values.iter_mut().zip(rows) {
+                    if pinned[col] || pinned[row] {
+                        *v = if row == col { diagonal } else { 0.0 };
+                    }
+                }
+            });
+    }
+
     /// `(K + Kᵀ)/2` on the same pattern.
     pub fn symmetric_part(&self, transpose: &[usize]) -> Stiffness {
         let values = self

@@ -10,8 +10,9 @@
 //! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error.
 
 use clap::{Parser, Subcommand};
-use dhpd::drivers::static_solve;
+use dhpd::drivers::{quasi_static, static_solve};
 use dhpd::error::Error;
+use dhpd::output::series::SeriesWriter;
 use dhpd::output::{self, Plan};
 use dhpd::reference::{ErrorStats, FemReference, BIMATERIAL_STRIP_FEM};
 use dhpd::scene::{self, Scene};
@@ -46,9 +47,13 @@ fn main() {
     let cli = Cli::parse();
     let result = match cli.command {
         None => run_default(),
-        Some(Command::Run { scene, out }) => {
-            scene::load(&scene).and_then(|s| run(&s, out.as_deref()).map(|_| ()))
-        }
+        Some(Command::Run { scene, out }) => scene::load(&scene).and_then(|s| {
+            if s.quasi_static.is_some() {
+                run_fracture(&s, out.as_deref())
+            } else {
+                run(&s, out.as_deref()).map(|_| ())
+            }
+        }),
         Some(Command::Check { scene }) => check(&scene),
     };
     if let Err(e) = result {
@@ -73,9 +78,7 @@ fn check(path: &Path) -> Result<(), Error> {
 
 fn run(scene: &Scene, out: Option<&Path>) -> Result<static_solve::StaticSolution, Error> {
     let start = Instant::now();
-    let dir = out
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name));
+    let dir = output_dir(scene, out);
     output::check_output_dir(&dir)?;
     let prepared = static_solve::prepare(scene)?;
     let plan = Plan::new(scene, &prepared.disc)?;
@@ -83,6 +86,81 @@ fn run(scene: &Scene, out: Option<&Path>) -> Result<static_solve::StaticSolution
     output::write_static(&dir, scene, &plan, &solution, start.elapsed().as_secs_f64())?;
     print_report(scene, &solution, &dir);
     Ok(solution)
+}
+
+fn output_dir(scene: &Scene, out: Option<&Path>) -> PathBuf {
+    out.map(Path::to_path_buf)
+        .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name))
+}
+
+/// A quasi-static fracture run: the series' step files are written while it runs,
+/// into a staging directory that replaces the output directory when complete.
+fn run_fracture(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
+    let start = Instant::now();
+    let dir = output_dir(scene, out);
+    output::check_output_dir(&dir)?;
+    let prepared = static_solve::prepare(scene)?;
+    let plan = Plan::new(scene, &prepared.disc)?;
+    let staging = output::Staging::new(&dir)?;
+    let settings = scene.quasi_static.as_ref().expect("a fracture scene");
+    let steps = (settings.strategy != dhpd::scene::Strategy::Event).then_some(settings.steps as u64);
+    let mut series = SeriesWriter::new(staging.path(), steps);
+    let solution = quasi_static::run(scene, prepared, &mut series)?;
+    let entries = series.finish();
+    output::write_quasi_static(
+        staging,
+        scene,
+        &plan,
+        &solution,
+        &entries,
+        start.elapsed().as_secs_f64(),
+    )?;
+    print_fracture_report(scene, &solution, &dir);
+    Ok(())
+}
+
+fn print_fracture_report(scene: &Scene, s: &quasi_static::QuasiStaticSolution, dir: &Path) {
+    println!(
+        "scene {}: {} points, {} bonds, {} free dofs, nnz(K) {}, nnz(L) {}",
+        scene.name,
+        s.disc.points.len(),
+        s.bonds,
+        s.dofs_free,
+        s.nnz_k,
+        s.nnz_l.map_or("-".into(), |v| v.to_string())
+    );
+    let broken = s.records.last().map_or(0, |r| r.broken_total);
+    let (fresh, reuse): (Vec<_>, Vec<_>) = s
+        .solves
+        .iter()
+        .partition(|x| x.report.route == dhpd::solve::pipeline::Route::Factor);
+    println!(
+        "{} records, {} bonds broken, {} solves ({} with a fresh factorisation, {} reusing the factor); {}",
+        s.records.len(),
+        broken,
+        s.solves.len(),
+        fresh.len(),
+        reuse.len(),
+        s.outcome.describe()
+    );
+    for (k, name) in s.set_names.iter().enumerate() {
+        if let Some(peak) = s.records.iter().max_by(|a, b| {
+            dhpd::geometry::norm(&a.reactions[k]).total_cmp(&dhpd::geometry::norm(&b.reactions[k]))
+        }) {
+            let f = peak.reactions[k];
+            println!(
+                "peak reaction {:>10}: [{:.6e}, {:.6e}, {:.6e}] N at load factor {:.6e} (step {})",
+                name, f[0], f[1], f[2], peak.load_factor, peak.step
+            );
+        }
+    }
+    for line in s.log.iter().take(10) {
+        println!("  {line}");
+    }
+    if s.log.len() > 10 {
+        println!("  ... {} more in summary.json", s.log.len() - 10);
+    }
+    println!("results in {}", dir.display());
 }
 
 fn print_report(scene: &Scene, s: &static_solve::StaticSolution, dir: &Path) {

@@ -1,7 +1,8 @@
 //! CSV files: all point fields, line profiles and probes.
 
-use crate::drivers::static_solve::StaticSolution;
-use crate::error::Error;
+use super::PointData;
+use crate::drivers::quasi_static::QuasiStaticSolution;
+use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
 use std::fmt::Write;
 use std::path::Path;
@@ -24,8 +25,10 @@ fn row(values: &[f64; 3], d: usize) -> String {
         .join(",")
 }
 
-/// Writes `points.csv`: id, position, displacement, volume, spacing, horizon, material, bond count.
-pub fn write_points(path: &Path, scene: &Scene, s: &StaticSolution) -> Result<(), Error> {
+/// Writes `points.csv`: id, position, displacement, volume, spacing, horizon,
+/// material, bond count (intact bonds touching the point), then the stress
+/// and the damage when present.
+pub fn write_points(path: &Path, scene: &Scene, s: &PointData) -> Result<(), Error> {
     let d = s.disc.d;
     let p = &s.disc.points;
     let bonds = s.disc.bonds.touch_counts(p.len());
@@ -35,14 +38,15 @@ pub fn write_points(path: &Path, scene: &Scene, s: &StaticSolution) -> Result<()
         .map(|(name, _, _)| format!(",{name}"))
         .collect();
     let mut t = format!(
-        "id,{},{},volume,spacing,horizon,material,bond_count{}\n",
+        "id,{},{},volume,spacing,horizon,material,bond_count{}{}\n",
         header(d, ""),
         header(d, "u_"),
         if s.stress.is_some() {
             stress_header.as_str()
         } else {
             ""
-        }
+        },
+        if s.damage.is_some() { ",damage" } else { "" }
     );
     for i in 0..p.len() {
         let stress: String = match &s.stress {
@@ -52,9 +56,12 @@ pub fn write_points(path: &Path, scene: &Scene, s: &StaticSolution) -> Result<()
                 .collect(),
             None => String::new(),
         };
+        let damage = s
+            .damage
+            .map_or(String::new(), |phi| format!(",{:e}", phi[i]));
         let _ = writeln!(
             t,
-            "{i},{},{},{:e},{:e},{:e},{},{}{stress}",
+            "{i},{},{},{:e},{:e},{:e},{},{}{stress}{damage}",
             row(&p.x[i], d),
             row(&s.u[i], d),
             p.volume[i],
@@ -86,8 +93,7 @@ pub fn stress_components(d: usize) -> Vec<(&'static str, usize, usize)> {
 /// Writes one profile: arc length, point id, position, displacement.
 pub fn write_profile(
     path: &Path,
-    _scene: &Scene,
-    s: &StaticSolution,
+    s: &PointData,
     points: &[(f64, usize)],
 ) -> Result<(), Error> {
     let d = s.disc.d;
@@ -106,8 +112,7 @@ pub fn write_profile(
 /// Writes `probes.csv`: name, point id, position, displacement.
 pub fn write_probes(
     path: &Path,
-    _scene: &Scene,
-    s: &StaticSolution,
+    s: &PointData,
     probes: &[(String, usize)],
 ) -> Result<(), Error> {
     let d = s.disc.d;
@@ -118,6 +123,60 @@ pub fn write_probes(
             "{name},{i},{},{}",
             row(&s.disc.points.x[*i], d),
             row(&s.u[*i], d)
+        );
+    }
+    super::write_file(path, &t)
+}
+
+/// Writes `load_displacement.csv`: one row per record of a quasi-static run
+/// (step, state, load factor, prescribed displacement, reaction components of
+/// every constrained set, bonds broken in the step and in total, re-solves,
+/// solver route and iterations, residual, wall time).
+pub fn write_load_displacement(path: &Path, s: &QuasiStaticSolution) -> Result<(), Error> {
+    let d = s.disc.d;
+    let reaction_header: String = s
+        .set_names
+        .iter()
+        .map(|name| format!(",{}", header(d, &format!("reaction_{name}_"))))
+        .collect();
+    let mut t = format!(
+        "step,state,load_factor,displacement{reaction_header},broken_in_step,broken_total,\
+         resolves,route,iterations,residual,wall_time\n"
+    );
+    for r in &s.records {
+        let reactions: String = r
+            .reactions
+            .iter()
+            .map(|f| format!(",{}", row(f, d)))
+            .collect();
+        let numbers = [r.load_factor, r.displacement, r.residual, r.wall_time];
+        if numbers
+            .iter()
+            .chain(r.reactions.iter().flatten())
+            .any(|v| !v.is_finite())
+        {
+            return Err(NumericalError::NonFinite {
+                what: format!("the record of step {}", r.step),
+            }
+            .into());
+        }
+        let state = serde_json::to_value(r.state)
+            .ok()
+            .and_then(|v| v.as_str().map(str::to_owned))
+            .unwrap_or_default();
+        let _ = writeln!(
+            t,
+            "{},{state},{:e},{:e}{reactions},{},{},{},{},{},{:e},{:.6}",
+            r.step,
+            r.load_factor,
+            r.displacement,
+            r.broken_in_step,
+            r.broken_total,
+            r.resolves,
+            r.route,
+            r.iterations,
+            r.residual,
+            r.wall_time
         );
     }
     super::write_file(path, &t)

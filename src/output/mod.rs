@@ -5,11 +5,14 @@
 
 pub mod csv;
 pub mod matrix_market;
+pub mod series;
 pub mod summary;
 pub mod vtu;
 
 use crate::discretization::Discretization;
+use crate::drivers::quasi_static::QuasiStaticSolution;
 use crate::drivers::static_solve::StaticSolution;
+use crate::model::Block;
 use crate::error::{Error, InputError};
 use crate::geometry::{dot, norm, sub};
 use crate::scene::Scene;
@@ -68,6 +71,105 @@ impl Plan {
     }
 }
 
+/// The point fields one output file shows.
+pub struct PointData<'a> {
+    /// Points and bonds (the bond count is of the intact bonds).
+    pub disc: &'a Discretization,
+    /// Displacement of every point.
+    pub u: &'a [[f64; 3]],
+    /// Recovered stress, when computed.
+    pub stress: Option<&'a [Block]>,
+    /// Damage per point, for fracture runs.
+    pub damage: Option<&'a [f64]>,
+}
+
+impl StaticSolution {
+    /// The fields of a static solution.
+    pub fn point_data(&self) -> PointData<'_> {
+        PointData {
+            disc: &self.disc,
+            u: &self.u,
+            stress: self.stress.as_deref(),
+            damage: None,
+        }
+    }
+}
+
+/// A temporary sibling directory that receives the results and becomes the
+/// requested one only when complete ([`Staging::commit`]); dropped uncommitted,
+/// it is removed, so a failed run leaves no partial result.
+pub struct Staging {
+    dir: PathBuf,
+    tmp: PathBuf,
+    committed: bool,
+}
+
+impl Staging {
+    /// Creates the temporary directory next to `dir`.
+    pub fn new(dir: &Path) -> Result<Self, Error> {
+        let tmp = temporary_sibling(dir);
+        let _ = std::fs::remove_dir_all(&tmp);
+        std::fs::create_dir_all(&tmp).map_err(|e| Error::io(&tmp, e))?;
+        Ok(Self {
+            dir: dir.to_path_buf(),
+            tmp,
+            committed: false,
+        })
+    }
+
+    /// Where files go until the commit.
+    pub fn path(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Replaces the requested directory by the temporary one.
+    pub fn commit(mut self) -> Result<(), Error> {
+        let dir = self.dir.clone();
+        check_output_dir(&dir)?;
+        let old = dir.with_file_name(format!(".{}.old-{}", file_name(&dir), std::process::id()));
+        let replacing = dir.exists();
+        if replacing {
+            std::fs::rename(&dir, &old).map_err(|e| Error::io(&dir, e))?;
+        }
+        if let Err(e) = std::fs::rename(&self.tmp, &dir) {
+            if replacing {
+                let _ = std::fs::rename(&old, &dir);
+            }
+            return Err(Error::io(&dir, e));
+        }
+        self.committed = true;
+        if replacing {
+            let _ = std::fs::remove_dir_all(&old);
+        }
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.tmp);
+        }
+    }
+}
+
+/// Writes the point files, profiles and probes of one state into `dir`.
+fn write_points(dir: &Path, scene: &Scene, plan: &Plan, data: &PointData) -> Result<(), Error> {
+    if scene.output.vtu {
+        vtu::write(&dir.join("points.vtu"), data)?;
+    }
+    if scene.output.points_csv {
+        csv::write_points(&dir.join("points.csv"), scene, data)?;
+    }
+    for (name, pts) in &plan.profiles {
+        csv::write_profile(&dir.join(format!("profile_{name}.csv")), data, pts)?;
+    }
+    if !plan.probes.is_empty() {
+        csv::write_probes(&dir.join("probes.csv"), data, &plan.probes)?;
+    }
+    Ok(())
+}
+
 /// Writes every requested output of a static run into `dir`, atomically.
 pub fn write_static(
     dir: &Path,
@@ -76,53 +178,40 @@ pub fn write_static(
     solution: &StaticSolution,
     total_seconds: f64,
 ) -> Result<(), Error> {
-    let tmp = temporary_sibling(dir);
-    let _ = std::fs::remove_dir_all(&tmp);
-    let result = (|| {
-        std::fs::create_dir_all(&tmp).map_err(|e| Error::io(&tmp, e))?;
-        if scene.output.vtu {
-            vtu::write(&tmp.join("points.vtu"), scene, solution)?;
-        }
-        if scene.output.points_csv {
-            csv::write_points(&tmp.join("points.csv"), scene, solution)?;
-        }
-        for (name, pts) in &plan.profiles {
-            csv::write_profile(
-                &tmp.join(format!("profile_{name}.csv")),
-                scene,
-                solution,
-                pts,
-            )?;
-        }
-        if !plan.probes.is_empty() {
-            csv::write_probes(&tmp.join("probes.csv"), scene, solution, &plan.probes)?;
-        }
-        if scene.output.matrix_market {
-            matrix_market::write(&tmp, &solution.system)?;
-        }
-        summary::write(&tmp.join("summary.json"), scene, solution, total_seconds)
-    })();
-    if let Err(e) = result {
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(e);
+    let staging = Staging::new(dir)?;
+    let tmp = staging.path();
+    write_points(tmp, scene, plan, &solution.point_data())?;
+    if scene.output.matrix_market {
+        matrix_market::write(tmp, &solution.system)?;
     }
-    check_output_dir(dir)?;
-    let old = dir.with_file_name(format!(".{}.old-{}", file_name(dir), std::process::id()));
-    let replacing = dir.exists();
-    if replacing {
-        std::fs::rename(dir, &old).map_err(|e| Error::io(dir, e))?;
+    summary::write(&tmp.join("summary.json"), scene, solution, total_seconds)?;
+    staging.commit()
+}
+
+/// Writes the final state and the records of a quasi-static run into the
+/// staging directory (which already holds the series' step files), then commits it.
+pub fn write_quasi_static(
+    staging: Staging,
+    scene: &Scene,
+    plan: &Plan,
+    solution: &QuasiStaticSolution,
+    series: &[(f64, String)],
+    total_seconds: f64,
+) -> Result<(), Error> {
+    let tmp = staging.path();
+    let data = PointData {
+        disc: &solution.disc,
+        u: &solution.u,
+        stress: None,
+        damage: Some(&solution.damage),
+    };
+    write_points(tmp, scene, plan, &data)?;
+    csv::write_load_displacement(&tmp.join("load_displacement.csv"), solution)?;
+    if !series.is_empty() {
+        vtu::write_collection(&tmp.join("series.pvd"), series)?;
     }
-    if let Err(e) = std::fs::rename(&tmp, dir) {
-        if replacing {
-            let _ = std::fs::rename(&old, dir);
-        }
-        let _ = std::fs::remove_dir_all(&tmp);
-        return Err(Error::io(dir, e));
-    }
-    if replacing {
-        let _ = std::fs::remove_dir_all(&old);
-    }
-    Ok(())
+    summary::write_quasi_static(&tmp.join("summary.json"), scene, solution, total_seconds)?;
+    staging.commit()
 }
 
 /// Checks that `dir` may receive results: it must not exist, or be an empty

@@ -1,7 +1,9 @@
 //! `summary.json`: counts, wall time per phase, residual, reactions and loads.
 
 use crate::assembly::loads::AppliedLoad;
+use crate::drivers::quasi_static::{Outcome, QuasiStaticSolution, ResolveRecord, StepRecord};
 use crate::drivers::static_solve::{Counts, Reaction, StaticSolution, Timings};
+use crate::solve::pipeline::Route;
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
 use serde::Serialize;
@@ -69,5 +71,177 @@ pub fn write(
     let text = serde_json::to_string_pretty(&summary).map_err(|e| NumericalError::NonFinite {
         what: format!("summary ({e})"),
     })?;
+    super::write_file(path, &text)
+}
+
+/// Solves of one route: how many, and their time.
+#[derive(Debug, Serialize)]
+pub struct RouteStats {
+    /// Number of solves.
+    pub count: usize,
+    /// Krylov iterations in all.
+    pub iterations: usize,
+    /// Median time of one solve, factorisation included (s).
+    pub median_seconds: f64,
+    /// Total time (s).
+    pub total_seconds: f64,
+}
+
+impl RouteStats {
+    fn of(solves: &[&ResolveRecord]) -> Self {
+        let mut times: Vec<f64> = solves
+            .iter()
+            .map(|s| s.report.factor_seconds + s.report.solve_seconds)
+            .collect();
+        times.sort_by(f64::total_cmp);
+        let median = match times.len() {
+            0 => 0.0,
+            n if n % 2 == 1 => times[n / 2],
+            n => 0.5 * (times[n / 2 - 1] + times[n / 2]),
+        };
+        Self {
+            count: solves.len(),
+            iterations: solves.iter().map(|s| s.report.iterations).sum(),
+            median_seconds: median,
+            total_seconds: times.iter().sum(),
+        }
+    }
+}
+
+/// The peak reaction of one constrained set over the run.
+#[derive(Debug, Serialize)]
+pub struct Peak {
+    /// Set name.
+    pub name: String,
+    /// Largest magnitude of the set's reaction (N).
+    pub magnitude: f64,
+    /// The reaction there.
+    pub force: [f64; 3],
+    /// Step and load factor where it occurred.
+    pub step: usize,
+    /// Load factor there.
+    pub load_factor: f64,
+    /// Prescribed displacement there (λ × the largest prescribed component).
+    pub displacement: f64,
+}
+
+/// The JSON document of a quasi-static run.
+#[derive(Debug, Serialize)]
+pub struct QuasiStaticSummary<'a> {
+    /// Scene name.
+    pub scene: &'a str,
+    /// dhpd version.
+    pub version: &'static str,
+    /// Model and dimension.
+    pub model: String,
+    /// Breakage strategy.
+    pub strategy: String,
+    /// How the run ended.
+    pub outcome: &'a Outcome,
+    /// Points, bonds, free unknowns, nnz(K), nnz(L).
+    pub counts: serde_json::Value,
+    /// Setup time per phase (s).
+    pub timings: &'a Timings,
+    /// Whole run (s), including output.
+    pub total_seconds: f64,
+    /// Final load factor.
+    pub final_load_factor: f64,
+    /// Bonds broken in all.
+    pub bonds_broken: usize,
+    /// Peak reaction of each constrained set.
+    pub peaks: Vec<Peak>,
+    /// Solves with a fresh factorisation.
+    pub fresh_factorisations: RouteStats,
+    /// Solves reusing the previous factor.
+    pub reuses: RouteStats,
+    /// What breaking did to the system.
+    pub log: &'a [String],
+    /// Applied loads at load factor 1.
+    pub loads: &'a [AppliedLoad],
+    /// Every record (the rows of load_displacement.csv).
+    pub steps: &'a [StepRecord],
+    /// Every solve: step, bonds broken since the previous one, route, iterations, times.
+    pub solves: &'a [ResolveRecord],
+}
+
+/// Writes the summary of a quasi-static run; refuses to write non-finite numbers.
+pub fn write_quasi_static(
+    path: &Path,
+    scene: &Scene,
+    s: &QuasiStaticSolution,
+    total_seconds: f64,
+) -> Result<(), Error> {
+    let peaks = s
+        .set_names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let best = s
+                .records
+                .iter()
+                .max_by(|a, b| {
+                    crate::geometry::norm(&a.reactions[k])
+                        .total_cmp(&crate::geometry::norm(&b.reactions[k]))
+                })
+                .expect("a run has its initial record");
+            Peak {
+                name: name.clone(),
+                magnitude: crate::geometry::norm(&best.reactions[k]),
+                force: best.reactions[k],
+                step: best.step,
+                load_factor: best.load_factor,
+                displacement: best.displacement,
+            }
+        })
+        .collect();
+    let route = |r: Route| -> Vec<&ResolveRecord> {
+        s.solves.iter().filter(|x| x.report.route == r).collect()
+    };
+    let strategy = scene
+        .quasi_static
+        .as_ref()
+        .map(|q| format!("{:?}", q.strategy))
+        .unwrap_or_default();
+    let summary = QuasiStaticSummary {
+        scene: &scene.name,
+        version: env!("CARGO_PKG_VERSION"),
+        model: format!("{:?} {:?}", scene.model, scene.dimension),
+        strategy,
+        outcome: &s.outcome,
+        counts: serde_json::json!({
+            "points": s.disc.points.len(),
+            "bonds": s.bonds,
+            "dofs": s.dofs_free,
+            "nnz_k": s.nnz_k,
+            "nnz_l": s.nnz_l,
+        }),
+        timings: &s.timings,
+        total_seconds,
+        final_load_factor: s.load_factor,
+        bonds_broken: s.records.last().map_or(0, |r| r.broken_total),
+        peaks,
+        fresh_factorisations: RouteStats::of(&route(Route::Factor)),
+        reuses: RouteStats::of(&route(Route::Reuse)),
+        log: &s.log,
+        loads: &s.loads,
+        steps: &s.records,
+        solves: &s.solves,
+    };
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| NumericalError::NonFinite {
+        what: format!("summary ({e})"),
+    })?;
+    // serde_json would write a non-finite number as null: refuse instead.
+    let finite = s.records.iter().all(|r| {
+        [r.load_factor, r.displacement, r.residual]
+            .iter()
+            .chain(r.reactions.iter().flatten())
+            .all(|v| v.is_finite())
+    }) && s.solves.iter().all(|x| x.report.residual.is_finite());
+    if !finite {
+        return Err(NumericalError::NonFinite {
+            what: "the summary (records or solves)".into(),
+        }
+        .into());
+    }
     super::write_file(path, &text)
 }

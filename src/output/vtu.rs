@@ -1,14 +1,15 @@
 //! A VTK unstructured-grid file (XML, ASCII) of the points as vertex cells, which
-//! ParaView opens: displacement, volume, horizon, material and bond count.
+//! ParaView opens: displacement, volume, horizon, material, bond count, and the
+//! stress and damage when present; and the `.pvd` collection that lists a
+//! series of them by load factor.
 
-use crate::drivers::static_solve::StaticSolution;
+use super::PointData;
 use crate::error::Error;
-use crate::scene::Scene;
 use std::fmt::Write;
 use std::path::Path;
 
-/// Writes `points.vtu`.
-pub fn write(path: &Path, _scene: &Scene, s: &StaticSolution) -> Result<(), Error> {
+/// Writes one VTU file of the points.
+pub fn write(path: &Path, s: &PointData) -> Result<(), Error> {
     let p = &s.disc.points;
     let n = p.len();
     let bonds = s.disc.bonds.touch_counts(n);
@@ -29,11 +30,11 @@ pub fn write(path: &Path, _scene: &Scene, s: &StaticSolution) -> Result<(), Erro
     join_into(&mut t, std::iter::repeat_n(1, n));
     t.push_str("</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\">\n");
     t.push_str("<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for u in &s.u {
+    for u in s.u {
         let _ = writeln!(t, "{:e} {:e} {:e}", u[0], u[1], u[2]);
     }
     t.push_str("</DataArray>\n");
-    if let Some(stress) = &s.stress {
+    if let Some(stress) = s.stress {
         t.push_str("<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"9\" format=\"ascii\">\n");
         for sigma in stress {
             let row: Vec<String> = sigma.iter().flatten().map(|v| format!("{v:e}")).collect();
@@ -65,6 +66,14 @@ pub fn write(path: &Path, _scene: &Scene, s: &StaticSolution) -> Result<(), Erro
         "bond_count",
         bonds.iter().map(|v| v.to_string()),
     );
+    if let Some(damage) = s.damage {
+        scalar(
+            &mut t,
+            "Float64",
+            "damage",
+            damage.iter().map(|v| format!("{v:e}")),
+        );
+    }
     t.push_str("</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     super::write_file(path, &t)
 }
@@ -83,4 +92,20 @@ fn scalar(t: &mut String, ty: &str, name: &str, values: impl Iterator<Item = Str
     );
     join_into(t, values);
     t.push_str("</DataArray>\n");
+}
+
+/// Writes a ParaView collection (`.pvd`) listing `(time, file)` pairs; the
+/// time is the load factor.
+pub fn write_collection(path: &Path, entries: &[(f64, String)]) -> Result<(), Error> {
+    let mut t = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
+    );
+    for (time, file) in entries {
+        let _ = writeln!(
+            t,
+            "<DataSet timestep=\"{time:e}\" group=\"\" part=\"0\" file=\"{file}\"/>"
+        );
+    }
+    t.push_str("</Collection>\n</VTKFile>\n");
+    super::write_file(path, &t)
 }

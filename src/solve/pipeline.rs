@@ -183,6 +183,8 @@ pub struct Pipeline {
     factored: bool,
     symmetric: bool,
     costs: Costs,
+    /// Free unknowns held at zero (fracture runs) and the diagonal they get.
+    pinned: Option<(Vec<bool>, f64)>,
     /// Symbolic analysis time (s).
     pub symbolic_seconds: f64,
     /// Sparsity pattern time (s).
@@ -237,9 +239,17 @@ impl Pipeline {
             factor,
             factored: false,
             costs: Costs::default(),
+            pinned: None,
             symbolic_seconds: t.elapsed().as_secs_f64(),
             pattern_seconds,
         })
+    }
+
+    /// Free unknowns (by free index) that every factorised matrix holds at zero:
+    /// the caller pins them in `K` ([`Stiffness::pin`]); the pipeline does the
+    /// same in the surrogate it assembles itself.
+    pub fn set_pinned(&mut self, pinned: Vec<bool>, diagonal: f64) {
+        self.pinned = Some((pinned, diagonal));
     }
 
     /// The pattern of `K` (assemble on it).
@@ -308,7 +318,11 @@ impl Pipeline {
             }
             Source::Surrogate => {
                 let (star, model) = self.surrogate.as_ref().expect("surrogate route");
-                surrogate_values = Stiffness::assemble(model, disc, dofs, star);
+                let mut values = Stiffness::assemble(model, disc, dofs, star);
+                if let Some((pinned, diagonal)) = &self.pinned {
+                    values.pin(star, pinned, *diagonal);
+                }
+                surrogate_values = values;
                 surrogate_values.view(star)
             }
         };
