@@ -34,3 +34,47 @@ pub fn internal_forces<M: Model>(
     }
     f
 }
+
+/// Internal force on each of `points` only, for displacements `u`: the forces
+/// of the bonds owned by those points and of the bonds ending at them
+/// (`incoming(q)`: the `(owner, bond)` pairs of the bonds ending at `q`). Costs
+/// the families of those owners, each computed once, not the whole body.
+pub fn internal_forces_on<'a, M: Model>(
+    model: &M,
+    disc: &Discretization,
+    u: &[[f64; 3]],
+    linear: bool,
+    points: &[usize],
+    incoming: impl Fn(usize) -> &'a [(u32, u32)],
+) -> Vec<[f64; 3]> {
+    let bonds = &disc.bonds;
+    let mut owners: Vec<usize> = points.to_vec();
+    for &q in points {
+        owners.extend(incoming(q).iter().map(|&(o, _)| o as usize));
+    }
+    owners.sort_unstable();
+    owners.dedup();
+    let forces: Vec<Vec<[f64; 3]>> = owners
+        .par_iter()
+        .map(|&o| {
+            let mut out = vec![[0.0; 3]; bonds.owned_by(o).len()];
+            model.owner_forces(disc, o, u, linear, &mut out);
+            out
+        })
+        .collect();
+    let of = |o: usize| &forces[owners.binary_search(&o).expect("owner computed")];
+    points
+        .iter()
+        .map(|&q| {
+            let mut f = [0.0; 3];
+            for force in of(q) {
+                (0..3).for_each(|c| f[c] += force[c]);
+            }
+            for &(o, b) in incoming(q) {
+                let force = of(o as usize)[b as usize - bonds.offsets[o as usize]];
+                (0..3).for_each(|c| f[c] -= force[c]);
+            }
+            f
+        })
+        .collect()
+}

@@ -66,12 +66,23 @@ impl Stiffness {
     /// and columns are zeroed and their diagonal set to `diagonal`, so with a
     /// zero right-hand side they solve to zero. Exact for the other unknowns
     /// when the pinned ones are coupled to no other (no intact bond to them).
-    pub fn pin(&mut self, pattern: &Pattern, pinned: &[bool], diagonal: f64) {
+    /// `columns` (by free unknown) restricts the pass to those columns, which
+    /// must include every column with an entry in a newly pinned row.
+    pub fn pin(
+        &mut self,
+        pattern: &Pattern,
+        pinned: &[bool],
+        diagonal: f64,
+        columns: Option<&[bool]>,
+    ) {
         use rayon::prelude::*;
         crate::assembly::split_at_offsets(&mut self.values, &pattern.col_ptr)
             .into_par_iter()
             .enumerate()
             .for_each(|(col, values)| {
+                if columns.is_some_and(|c| !c[col]) {
+                    return;
+                }
                 let rows = &pattern.row_idx[pattern.col_ptr[col]..pattern.col_ptr[col + 1]];
                 for (v, &row) in values.iter_mut().zip(rows) {
                     if pinned[col] || pinned[row] {
@@ -163,6 +174,20 @@ pub fn fill<M: Model>(
     pattern: &Pattern,
     values: &mut [f64],
 ) {
+    fill_columns(model, disc, dofs, pattern, values, None);
+}
+
+/// Overwrites the columns of the point columns flagged in `columns` (every
+/// column when `None`) with the tangent of `model`: after bonds break, only
+/// the columns they touch change.
+pub fn fill_columns<M: Model>(
+    model: &M,
+    disc: &Discretization,
+    dofs: &DofMap,
+    pattern: &Pattern,
+    values: &mut [f64],
+    columns: Option<&[bool]>,
+) {
     let offsets = pattern.point_value_offsets(dofs);
     split_at_offsets(values, &offsets)
         .into_par_iter()
@@ -171,7 +196,7 @@ pub fn fill<M: Model>(
             // Per thread: the slot of each row point in the current column (u32::MAX = none).
             || vec![u32::MAX; disc.points.len()],
             |slot, (q, out)| {
-                if out.is_empty() {
+                if out.is_empty() || columns.is_some_and(|c| !c[q]) {
                     return;
                 }
                 let rows = pattern.rows(q);

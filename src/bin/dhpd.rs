@@ -103,7 +103,8 @@ fn run_fracture(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
     let plan = Plan::new(scene, &prepared.disc)?;
     let staging = output::Staging::new(&dir)?;
     let settings = scene.quasi_static.as_ref().expect("a fracture scene");
-    let steps = (settings.strategy != dhpd::scene::Strategy::Event).then_some(settings.steps as u64);
+    let steps =
+        (settings.strategy != dhpd::scene::Strategy::Event).then_some(settings.steps as u64);
     let mut series = SeriesWriter::new(staging.path(), steps);
     let solution = quasi_static::run(scene, prepared, &mut series)?;
     let entries = series.finish();

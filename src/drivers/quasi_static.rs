@@ -54,7 +54,7 @@ use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
 use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
-use crate::solve::pipeline::{Pipeline, SolveReport, SolverSettings, Solved};
+use crate::solve::pipeline::{Pipeline, SolveReport, Solved, SolverSettings};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -149,9 +149,7 @@ impl Outcome {
     pub fn describe(&self) -> String {
         match self {
             Outcome::Completed => "reached the maximal load factor".into(),
-            Outcome::NothingToBreak => {
-                "no intact bond is loaded toward its critical value".into()
-            }
+            Outcome::NothingToBreak => "no intact bond is loaded toward its critical value".into(),
             Outcome::Separated { step } => format!("complete separation at step {step}"),
             Outcome::Failed { step, reason } => format!("failure at step {step}: {reason}"),
             Outcome::EventCap => "stopped at quasi_static.max_events".into(),
@@ -272,6 +270,12 @@ struct Run<'s, M: Model> {
     pending: usize,
     /// Points whose bonds broke since the last [`Run::consequences`].
     touched: Vec<usize>,
+    /// Bonds broken since the last assembly.
+    recent: Vec<usize>,
+    /// Points held since the last assembly.
+    newly_held: Vec<usize>,
+    /// Right-hand side at λ = 1 (before pinning).
+    rhs: Vec<f64>,
     peak_reaction: f64,
     reference_displacement: f64,
     solves: Vec<ResolveRecord>,
@@ -294,9 +298,8 @@ fn run_with<M: Model>(
         loads,
         mut timings,
     } = prepared;
-    let surrogate = (model.coupling() == Coupling::Family).then(|| {
-        BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness)
-    });
+    let surrogate = (model.coupling() == Coupling::Family)
+        .then(|| BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness));
     let pipeline = Pipeline::analyse(
         &disc,
         &dofs,
@@ -336,6 +339,9 @@ fn run_with<M: Model>(
         broken_total: 0,
         pending: 0,
         touched: Vec::new(),
+        recent: Vec::new(),
+        newly_held: Vec::new(),
+        rhs: Vec::new(),
         peak_reaction: 0.0,
         reference_displacement,
         solves: Vec::new(),
@@ -576,6 +582,7 @@ impl<M: Model> Run<'_, M> {
                 let owner = self.disc.bonds.offsets.partition_point(|&o| o <= b) - 1;
                 self.touched.push(owner);
                 self.touched.push(self.disc.bonds.neighbour[b] as usize);
+                self.recent.push(b);
                 count += 1;
             }
         }
@@ -656,6 +663,7 @@ impl<M: Model> Run<'_, M> {
             for &i in &touched {
                 if self.held[i].is_none() && self.dofs.free_count(i) > 0 && !self.has_bond(i) {
                     self.held[i] = Some(u[i]);
+                    self.newly_held.push(i);
                     self.log.push(format!(
                         "step {step}: point {i} (x = {:?}) has no intact bond left; held at its \
                          displacement",
@@ -741,6 +749,7 @@ impl<M: Model> Run<'_, M> {
             for &i in &piece {
                 if self.held[i].is_none() && self.dofs.free_count(i) > 0 {
                     self.held[i] = Some(u[i]);
+                    self.newly_held.push(i);
                 }
             }
             if piece.len() > 1 {
@@ -756,17 +765,54 @@ impl<M: Model> Run<'_, M> {
         None
     }
 
+    /// The point columns of `K` that changed since the last solve: the ends of
+    /// the broken bonds (star coupling) or every point of the families of their
+    /// owners (family coupling), and the newly held points. `None`: all.
+    fn changed_columns(&mut self, first: bool) -> Option<Vec<bool>> {
+        let recent = std::mem::take(&mut self.recent);
+        let held = std::mem::take(&mut self.newly_held);
+        if first {
+            return None;
+        }
+        let bonds = &self.disc.bonds;
+        let mut columns = vec![false; self.disc.points.len()];
+        for &b in &recent {
+            let owner = bonds.offsets.partition_point(|&o| o <= b) - 1;
+            columns[owner] = true;
+            columns[bonds.neighbour[b] as usize] = true;
+            if self.model.coupling() == Coupling::Family {
+                for k in bonds.owned_by(owner) {
+                    columns[bonds.neighbour[k] as usize] = true;
+                }
+            }
+        }
+        for i in held {
+            columns[i] = true;
+        }
+        Some(columns)
+    }
+
     /// Assembles `K` and `b` for the current bonds (held unknowns pinned) and
     /// solves at λ = 1: afresh for the first solve, else reusing the factor.
+    /// Only the columns of `K` that bonds broken since the last solve touch are
+    /// refilled, and `b` only when those include a prescribed point.
     fn solve(&mut self, step: usize, first: bool) -> Result<(), Error> {
-        stiffness::fill(
+        let columns = self.changed_columns(first);
+        stiffness::fill_columns(
             &self.model,
             &self.disc,
             &self.dofs,
             self.pipeline.pattern(),
             &mut self.stiffness.values,
+            columns.as_deref(),
         );
-        let mut rhs = right_hand_side(&self.model, &self.disc, &self.dofs, &self.f_ext, 1.0);
+        let prescribed_changed = columns
+            .as_ref()
+            .is_none_or(|c| (0..c.len()).any(|i| c[i] && self.dofs.free_count(i) < self.disc.d));
+        if prescribed_changed {
+            self.rhs = right_hand_side(&self.model, &self.disc, &self.dofs, &self.f_ext, 1.0);
+        }
+        let mut rhs = self.rhs.clone();
         let pinned: Vec<bool> = self
             .dofs
             .free_dofs
@@ -774,8 +820,19 @@ impl<M: Model> Run<'_, M> {
             .map(|&(i, _)| self.held[i as usize].is_some())
             .collect();
         if pinned.iter().any(|&p| p) {
-            self.stiffness
-                .pin(self.pipeline.pattern(), &pinned, self.pin_diagonal);
+            let dof_columns: Option<Vec<bool>> = columns.as_ref().map(|c| {
+                self.dofs
+                    .free_dofs
+                    .iter()
+                    .map(|&(i, _)| c[i as usize])
+                    .collect()
+            });
+            self.stiffness.pin(
+                self.pipeline.pattern(),
+                &pinned,
+                self.pin_diagonal,
+                dof_columns.as_deref(),
+            );
             for (r, &p) in rhs.iter_mut().zip(&pinned) {
                 if p {
                     *r = 0.0;
@@ -792,7 +849,15 @@ impl<M: Model> Run<'_, M> {
         };
         self.x = x;
         let u = self.unit_displacement();
-        self.unit_reactions = reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
+        self.unit_reactions = reactions(
+            &self.model,
+            &self.disc,
+            &self.dofs,
+            self.pipeline.pattern(),
+            &self.f_ext,
+            &u,
+            1.0,
+        );
         self.solves.push(ResolveRecord {
             step,
             bonds_broken: self.pending,

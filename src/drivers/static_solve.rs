@@ -3,7 +3,7 @@
 //! compute the reaction of every constrained set.
 
 use crate::assembly::dofs::DofMap;
-use crate::assembly::forces::internal_forces;
+use crate::assembly::forces::{internal_forces, internal_forces_on};
 use crate::assembly::loads::{external_forces, AppliedLoad};
 use crate::assembly::pattern::Pattern;
 use crate::assembly::rigid_modes;
@@ -267,7 +267,7 @@ pub fn solve_with<M: Model>(
     }
     let t = Instant::now();
     let u = dofs.expand(&solved.x);
-    let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
+    let reactions = reactions(model, &disc, &dofs, pipeline.pattern(), &f_ext, &u, 1.0);
     timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
     let stress = scene.output.stress.then(|| {
         use rayon::prelude::*;
@@ -340,23 +340,26 @@ pub fn right_hand_side<M: Model>(
 
 /// The reaction of every constrained set for displacements `u` under the
 /// external forces `f_ext` scaled by `load_factor`: the force the supports
-/// exert on the body, `−Σ_set (F_int + f_ext)` (formulation Sec. 7).
+/// exert on the body, `−Σ_set (F_int + f_ext)` (formulation Sec. 7). Only the
+/// bonds touching the sets are evaluated (`pattern` holds the incoming bonds).
 pub fn reactions<M: Model>(
     model: &M,
     disc: &Discretization,
     dofs: &DofMap,
+    pattern: &Pattern,
     f_ext: &[[f64; 3]],
     u: &[[f64; 3]],
     load_factor: f64,
 ) -> Vec<Reaction> {
-    let f_int = internal_forces(model, disc, u, true);
     dofs.sets
         .iter()
         .map(|set| {
+            let f_int =
+                internal_forces_on(model, disc, u, true, &set.points, |q| pattern.incoming(q));
             let mut force = [0.0; 3];
-            for &i in &set.points {
+            for (k, &i) in set.points.iter().enumerate() {
                 for c in 0..disc.d {
-                    force[c] -= f_int[i][c] + load_factor * f_ext[i][c];
+                    force[c] -= f_int[k][c] + load_factor * f_ext[i][c];
                 }
             }
             Reaction {

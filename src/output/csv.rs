@@ -91,11 +91,7 @@ pub fn stress_components(d: usize) -> Vec<(&'static str, usize, usize)> {
 }
 
 /// Writes one profile: arc length, point id, position, displacement.
-pub fn write_profile(
-    path: &Path,
-    s: &PointData,
-    points: &[(f64, usize)],
-) -> Result<(), Error> {
+pub fn write_profile(path: &Path, s: &PointData, points: &[(f64, usize)]) -> Result<(), Error> {
     let d = s.disc.d;
     let mut t = format!("s,id,{},{}\n", header(d, ""), header(d, "u_"));
     for &(arc, i) in points {
@@ -110,11 +106,7 @@ pub fn write_profile(
 }
 
 /// Writes `probes.csv`: name, point id, position, displacement.
-pub fn write_probes(
-    path: &Path,
-    s: &PointData,
-    probes: &[(String, usize)],
-) -> Result<(), Error> {
+pub fn write_probes(path: &Path, s: &PointData, probes: &[(String, usize)]) -> Result<(), Error> {
     let d = s.disc.d;
     let mut t = format!("name,id,{},{}\n", header(d, ""), header(d, "u_"));
     for (name, i) in probes {

@@ -12,9 +12,9 @@ pub mod vtu;
 use crate::discretization::Discretization;
 use crate::drivers::quasi_static::QuasiStaticSolution;
 use crate::drivers::static_solve::StaticSolution;
-use crate::model::Block;
 use crate::error::{Error, InputError};
 use crate::geometry::{dot, norm, sub};
+use crate::model::Block;
 use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 

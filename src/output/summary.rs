@@ -3,9 +3,9 @@
 use crate::assembly::loads::AppliedLoad;
 use crate::drivers::quasi_static::{Outcome, QuasiStaticSolution, ResolveRecord, StepRecord};
 use crate::drivers::static_solve::{Counts, Reaction, StaticSolution, Timings};
-use crate::solve::pipeline::Route;
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
+use crate::solve::pipeline::Route;
 use serde::Serialize;
 use std::path::Path;
 

@@ -320,7 +320,7 @@ impl Pipeline {
                 let (star, model) = self.surrogate.as_ref().expect("surrogate route");
                 let mut values = Stiffness::assemble(model, disc, dofs, star);
                 if let Some((pinned, diagonal)) = &self.pinned {
-                    values.pin(star, pinned, *diagonal);
+                    values.pin(star, pinned, *diagonal, None);
                 }
                 surrogate_values = values;
                 surrogate_values.view(star)

@@ -43,7 +43,7 @@ Method (scikit-fem, see lefm_fem.py):
     sqrt(G_c / G(1)), Delta_c = C P_c, stored energy P_c Delta_c / 2;
   * B: interaction integral (three domains) and displacement correlation
     on the crack faces; MTS kink angle.
-  * mesh convergence at a/W = 0.5 (levels 0-5, A and B) and at a/W = 0.2 and
+  * mesh convergence at a/W = 0.5 (levels 0-4, A and B) and at a/W = 0.2 and
     0.9 (levels 0-3, A).
 
 Run:  python3 fem_sent.py      (writes reference_sent.json next to this file)
@@ -193,7 +193,7 @@ def analyse_a(a, level, materials, stencil=(-1, 1), delta=DELTA_A, dc=False,
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--level", type=int, default=1, help="mesh level of the a/W sweep")
-    ap.add_argument("--conv-levels", type=int, nargs="*", default=[0, 1, 2, 3, 4, 5])
+    ap.add_argument("--conv-levels", type=int, nargs="*", default=[0, 1, 2, 3, 4])
     ap.add_argument("--conv-levels-ends", type=int, nargs="*", default=[0, 1, 2, 3])
     ap.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                   "reference_sent.json"))
@@ -309,31 +309,39 @@ def main():
     dd = np.gradient(dc, aW * W)
     for i in range(len(aW)):
         print(f" {aW[i]:.3f}  {Pc[i]:.9e}  {dc[i]:.9e}  {U[i]:.9e}         {'-' if dd[i] < 0 else '+'}")
-    # where does G(unit delta) peak (Delta_c minimum)?  spline of ln G_J
+    # where does Delta_c decrease with a (G at unit Delta increases)?  spline of ln G_J
     csG = CubicSpline(aW, np.log(res["G_J"]))
     fine = np.linspace(aW[0], aW[-1], 70001)
-    dlog = csG(fine, 1)
-    snap = fine[dlog > 0]
+    dec = csG(fine, 1) > 0
+    edges = np.nonzero(np.diff(dec.astype(int)))[0]
+    bounds = np.concatenate([[0], edges + 1, [len(fine)]])
+    intervals = [[float(fine[b0]), float(fine[b1 - 1])] for b0, b1 in zip(bounds[:-1], bounds[1:]) if dec[b0]]
+    turning = [float(0.5 * (fine[e] + fine[e + 1])) for e in edges]
     res["snap_back"] = dict(
-        description="Delta_c decreases with a (G at fixed Delta increases with a): the LEFM "
-                    "equilibrium path snaps back; crack growth is unstable under grip-displacement control there",
-        a_over_W_range=[float(snap.min()), float(snap.max())] if len(snap) else None,
-        a_over_W_min_delta_c=float(fine[np.argmax(csG(fine))]),
+        description="a/W intervals where Delta_c decreases with a (G at fixed Delta increases with a): "
+                    "the LEFM equilibrium path snaps back there, so crack growth is unstable under "
+                    "grip-displacement control; elsewhere Delta_c increases and growth is stable",
+        a_over_W_intervals_delta_c_decreasing=intervals,
+        a_over_W_turning_points=turning,
+        delta_c_at_turning_points=[float(np.sqrt(GC / np.exp(csG(x)))) for x in turning],
     )
-    print(f" snap-back (d delta_c / da < 0) for a/W in "
-          f"{res['snap_back']['a_over_W_range']}; minimum delta_c at a/W = {res['snap_back']['a_over_W_min_delta_c']:.4f}")
-    # energy balance along the stable part: int P d(Delta) = G_c (a - a0) + U(a) - U(a0)
-    i0 = int(np.searchsorted(aW, res["snap_back"]["a_over_W_min_delta_c"]))
+    print(f" Delta_c decreases with a (snap-back, unstable under displacement control) for a/W in "
+          + ", ".join(f"[{i0:.4f}, {i1:.4f}]" for i0, i1 in intervals)
+          + "; turning points a/W = " + ", ".join(f"{x:.4f} (delta_c = {d:.6e} m)" for x, d in
+                                                  zip(turning, res["snap_back"]["delta_c_at_turning_points"])))
+    # energy balance along the whole path (snap-back parts included, d(delta) < 0 there):
+    # int P d(Delta) = G_c t (a - a0) + U(a) - U(a0)
     csP = CubicSpline(aW, Pc)
     csD = CubicSpline(aW, dc)
-    ff = np.linspace(aW[i0], aW[-1], 20001)
+    ff = np.linspace(aW[0], aW[-1], 20001)
     work = np.trapezoid(csP(ff) * csD(ff, 1), ff)
-    rhs = GC * THICK * (aW[-1] - aW[i0]) * W + U[-1] - U[i0]
+    rhs = GC * THICK * (aW[-1] - aW[0]) * W + U[-1] - U[0]
     res["energy_balance_check"] = dict(
-        a_over_W_from=float(aW[i0]), a_over_W_to=float(aW[-1]),
-        work_int_P_ddelta=float(work), Gc_t_da_plus_dU=float(rhs))
-    print(f" energy balance a/W {aW[i0]:.3f} -> {aW[-1]:.3f}: int P d(delta) = {work:.6e} J/m, "
-          f"G_c t da + U(a) - U(a0) = {rhs:.6e} J/m (rel {work / rhs - 1:+.1e})")
+        a_over_W_from=float(aW[0]), a_over_W_to=float(aW[-1]),
+        work_int_P_ddelta=float(work), Gc_t_da_plus_dU=float(rhs),
+        note="cubic splines of P_c(a), delta_c(a) over the a/W grid")
+    print(f" energy balance a/W {aW[0]:.3f} -> {aW[-1]:.3f}: int P_c d(delta_c) = {work:.6e} J/m, "
+          f"G_c t (a - a0) + U(a) - U(a0) = {rhs:.6e} J/m (rel {work / rhs - 1:+.1e})")
 
     # ------------------------------------------------------- convergence A + B
     mat0 = MATERIALS[0]
