@@ -142,6 +142,11 @@ pub enum Outcome {
     },
     /// The event cap (`max_events`) was reached.
     EventCap,
+    /// Every reaction fell below `stop_after_peak` of its peak.
+    PastPeak {
+        /// The step at which it happened.
+        step: usize,
+    },
 }
 
 impl Outcome {
@@ -153,6 +158,9 @@ impl Outcome {
             Outcome::Separated { step } => format!("complete separation at step {step}"),
             Outcome::Failed { step, reason } => format!("failure at step {step}: {reason}"),
             Outcome::EventCap => "stopped at quasi_static.max_events".into(),
+            Outcome::PastPeak { step } => format!(
+                "stopped at step {step}: every reaction below quasi_static.stop_after_peak of its peak"
+            ),
         }
     }
 }
@@ -455,8 +463,8 @@ impl<M: Model> Run<'_, M> {
             if let Some(outcome) = ended {
                 return Ok((outcome, load_factor));
             }
-            if self.separated() {
-                return Ok((Outcome::Separated { step: event }, load_factor));
+            if let Some(outcome) = self.ended(event, load_factor) {
+                return Ok((outcome, load_factor));
             }
         }
         Ok((Outcome::EventCap, load_factor))
@@ -531,8 +539,8 @@ impl<M: Model> Run<'_, M> {
             if let Some(outcome) = outcome {
                 return Ok((outcome, load_factor));
             }
-            if self.separated() {
-                return Ok((Outcome::Separated { step }, load_factor));
+            if let Some(outcome) = self.ended(step, load_factor) {
+                return Ok((outcome, load_factor));
             }
             step_size = (2.0 * step_size).min(uniform);
         }
@@ -865,6 +873,22 @@ impl<M: Model> Run<'_, M> {
         });
         self.pending = 0;
         Ok(())
+    }
+
+    /// Whether the run ends after this state: separated, or past the peak as
+    /// `stop_after_peak` asks (`load_factor`: that of the state just recorded).
+    fn ended(&self, step: usize, load_factor: f64) -> Option<Outcome> {
+        if self.separated() {
+            return Some(Outcome::Separated { step });
+        }
+        let fraction = self.settings.stop_after_peak?;
+        let largest = self
+            .unit_reactions
+            .iter()
+            .map(|r| load_factor * crate::geometry::norm(&r.force))
+            .fold(0.0, f64::max);
+        (self.peak_reaction > 0.0 && largest < fraction * self.peak_reaction)
+            .then_some(Outcome::PastPeak { step })
     }
 
     /// Whether every reaction has fallen below [`SEPARATED`] of its peak.

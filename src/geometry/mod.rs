@@ -36,8 +36,14 @@ pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
     ]
 }
 
+/// Relative tolerance of the crossing test at the crack's own edges.
+const EDGE_TOLERANCE: f64 = 1e-9;
+
 /// Whether the open segment `p`-`q` crosses the crack. Segments that only touch
 /// the crack (an end point on it) do not cross; place cracks between point rows.
+/// The crack itself is closed: a segment through its end point (2D) or across
+/// its edge (3D), to within a relative 1e-9, crosses it, so that mirror-image
+/// bonds through a crack tip are treated alike whatever the round-off.
 pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
     match crack {
         Crack::Segment { from, to } => {
@@ -46,7 +52,9 @@ pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
             };
             let (o1, o2) = (orient(from, to, p), orient(from, to, q));
             let (o3, o4) = (orient(p, q, from), orient(p, q, to));
-            o1 * o2 < 0.0 && o3 * o4 < 0.0
+            let tol = EDGE_TOLERANCE * norm(&sub(q, p)) * norm(&sub(to, from));
+            let on_line = |o: f64| o.abs() <= tol;
+            o1 * o2 < 0.0 && (o3 * o4 < 0.0 || on_line(o3) || on_line(o4))
         }
         Crack::Parallelogram {
             origin,
@@ -70,7 +78,8 @@ pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
             let det = g11 * g22 - g12 * g12;
             let alpha = (g22 * r1 - g12 * r2) / det;
             let beta = (g11 * r2 - g12 * r1) / det;
-            (0.0..=1.0).contains(&alpha) && (0.0..=1.0).contains(&beta)
+            let closed = -EDGE_TOLERANCE..=1.0 + EDGE_TOLERANCE;
+            closed.contains(&alpha) && closed.contains(&beta)
         }
     }
 }
@@ -88,6 +97,11 @@ mod tests {
         assert!(crosses(&c, &[0.5, -0.1, 0.0], &[0.5, 0.1, 0.0]));
         assert!(!crosses(&c, &[1.5, -0.1, 0.0], &[1.5, 0.1, 0.0]));
         assert!(!crosses(&c, &[0.5, 0.0, 0.0], &[0.5, 0.1, 0.0]));
+        // Through the tip, from either side and with round-off either way: cut.
+        for eps in [0.0, 1e-17, -1e-17] {
+            assert!(crosses(&c, &[0.9, -0.1 + eps, 0.0], &[1.1, 0.1, 0.0]));
+            assert!(crosses(&c, &[0.9, 0.1 + eps, 0.0], &[1.1, -0.1, 0.0]));
+        }
     }
 
     #[test]

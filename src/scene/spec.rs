@@ -510,4 +510,8 @@ pub struct QuasiStaticSpec {
     pub max_resolves: Option<usize>,
     /// `event`: largest number of events (default 1,000,000).
     pub max_events: Option<usize>,
+    /// End the run once every reaction has fallen below this fraction of its
+    /// peak (e.g. 0.5 to study the peak load only); default: run to the
+    /// maximal load factor or to separation.
+    pub stop_after_peak: Option<f64>,
 }

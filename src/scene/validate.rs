@@ -83,6 +83,8 @@ pub struct QuasiStatic {
     pub max_resolves: usize,
     /// Events allowed (`event`).
     pub max_events: usize,
+    /// End once every reaction is below this fraction of its peak.
+    pub stop_after_peak: Option<f64>,
 }
 
 /// How a region's horizons are set.
@@ -786,6 +788,14 @@ fn fracture_runs(
             format!("{min_step_fraction} is outside (0, 1]"),
         ));
     }
+    if let Some(f) = q.stop_after_peak {
+        if !(f > 0.0 && f < 1.0) {
+            return Err(InputError::new(
+                "quasi_static.stop_after_peak",
+                format!("{f} is outside (0, 1): give the fraction of the peak reaction below which the run ends"),
+            ));
+        }
+    }
     let tolerance = q.tolerance.unwrap_or(1e-6);
     if !(0.0..1.0).contains(&tolerance) {
         return Err(InputError::new(
@@ -804,6 +814,7 @@ fn fracture_runs(
             tolerance,
             max_resolves,
             max_events,
+            stop_after_peak: q.stop_after_peak,
         }),
     ))
 }

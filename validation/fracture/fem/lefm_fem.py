@@ -97,6 +97,24 @@ def uniform_lines(x0, x1, hmax, nmin=1):
     return np.linspace(x0, x1, n + 1)
 
 
+def graded_lines(x0, x1, h_start, h_max, growth=1.3):
+    """Grid lines from x0 to x1: spacing h_start at x0, growing geometrically
+    by at most `growth` per cell up to h_max (spacings rescaled to fit)."""
+    Lx = abs(x1 - x0)
+    hs = []
+    h = h_start
+    while sum(hs) < Lx:
+        hs.append(min(h, h_max))
+        h *= growth
+    hs = np.array(hs)
+    if len(hs) > 1 and sum(hs[:-1]) > 0 and (Lx - sum(hs[:-1])) < 0.5 * hs[-1]:
+        hs = hs[:-1]
+    hs *= Lx / hs.sum()
+    xs = x0 + np.sign(x1 - x0) * np.concatenate([[0.0], np.cumsum(hs)])
+    xs[-1] = x1
+    return xs
+
+
 def refine_to_size(mesh, size_fn, max_iter=80):
     """Conforming RGB refinement until longest edge <= size_fn at the element."""
     for _ in range(max_iter):
@@ -213,7 +231,7 @@ class Model:
 
     @property
     def ndofs(self):
-        return self.basis.N
+        return int(self.basis.N)
 
     def K(self, lam, mu):
         return (lam * self.K_div + 2.0 * mu * self.K_sym).tocsr()

@@ -8,6 +8,8 @@
 //! point of each layer: a chain of bonds between point centres transmits the
 //! load from there on, so that is where the deformable body begins.
 
+pub mod fracture;
+
 use crate::drivers::static_solve::{self, StaticSolution};
 use crate::error::Error;
 use crate::scene::{parse_spec, Scene};

@@ -1,0 +1,194 @@
+//! The fracture validation cases (`validation/fracture`) as scene builders,
+//! shared by the tests (coarse), the study example (sweeps) and the committed
+//! scene files.
+//!
+//! **Single-edge-notched tension (SENT)**, plane stress, per unit thickness:
+//! a plate `x ∈ [0, W]`, free length `L` between clamped grips (`y = ±L/2`),
+//! an edge notch of length `a` along `y = 0` (a pre-crack no bond crosses).
+//! The grips are bands of whole spacings beyond `±L/2`, at least a horizon
+//! deep; the bottom one is held, the top one moved by `Δ` along `y` (`x`
+//! held), or along `x` for the shear loading. No bond breaks within `W/10` of
+//! the grips. `W = 0.1 m`, `L = 0.2 m`, `a = 0.05 m` (`a/W = 0.5`),
+//! `E = 30 GPa`, `ν = 1/3`, `G₀ = 200 J/m²`. The finite-element reference for
+//! this exact geometry and these grips is in `validation/fracture/fem`.
+
+use crate::scene::{parse_spec, Scene};
+use std::fmt::Write;
+use std::path::Path;
+
+/// Plate width `W` (m).
+pub const WIDTH: f64 = 0.1;
+/// Free length between the grips `L` (m).
+pub const LENGTH: f64 = 0.2;
+/// Notch length `a` (m).
+pub const NOTCH: f64 = 0.05;
+/// Young's modulus (Pa).
+pub const YOUNGS_MODULUS: f64 = 3.0e10;
+/// Fracture energy (J/m²).
+pub const FRACTURE_ENERGY: f64 = 200.0;
+/// Grip displacement at load factor 1 (m).
+pub const GRIP_DISPLACEMENT: f64 = 1.0e-4;
+
+/// How the top grip moves.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Loading {
+    /// Along `y` (mode I for the edge notch).
+    Tension,
+    /// Along `x` (in-plane shear of the notched section).
+    Shear,
+}
+
+/// A SENT specimen and how to run it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sent {
+    /// `"bond_based"` or `"shear"`.
+    pub model: &'static str,
+    /// Spacing `W / cells` of the (fine) grid.
+    pub cells: usize,
+    /// `m = δ/Δx`.
+    pub horizon_factor: f64,
+    /// `"event"`, `"all"` or `"most_critical"`.
+    pub strategy: &'static str,
+    /// Further `[quasi_static]` lines (e.g. `steps = 50`).
+    pub stepping: String,
+    /// A fine band `|y| ≤ half height` around the crack path with the grid
+    /// spacing, and twice the spacing elsewhere (DH-PD where it matters).
+    pub fine_band: Option<f64>,
+    /// `"dual"` (DH-PD) or `"constant"` (every point takes the largest horizon).
+    pub horizons: &'static str,
+    /// Grip motion.
+    pub loading: Loading,
+    /// `quasi_static.stop_after_peak`.
+    pub stop_after_peak: Option<f64>,
+    /// `output.every`.
+    pub output_every: Option<usize>,
+}
+
+impl Sent {
+    /// A uniform plate with `cells` spacings across, event strategy, tension.
+    pub fn new(model: &'static str, cells: usize, horizon_factor: f64) -> Self {
+        Self {
+            model,
+            cells,
+            horizon_factor,
+            strategy: "event",
+            stepping: String::new(),
+            fine_band: None,
+            horizons: "dual",
+            loading: Loading::Tension,
+            stop_after_peak: None,
+            output_every: None,
+        }
+    }
+
+    /// Grid spacing of the fine region.
+    pub fn spacing(&self) -> f64 {
+        WIDTH / self.cells as f64
+    }
+
+    /// Horizon of the fine region.
+    pub fn horizon(&self) -> f64 {
+        self.horizon_factor * self.spacing()
+    }
+
+    /// Scene name.
+    pub fn name(&self) -> String {
+        let mut name = format!(
+            "sent_{}_{}_n{}_m{}",
+            self.model,
+            self.strategy,
+            self.cells,
+            self.horizon_factor.floor()
+        );
+        if let Some(h) = self.fine_band {
+            let _ = write!(name, "_band{}", (h / self.spacing()).round());
+        }
+        if self.horizons == "constant" {
+            name.push_str("_constant");
+        }
+        if self.loading == Loading::Shear {
+            name.push_str("_shear_loading");
+        }
+        name
+    }
+
+    /// The scene file text.
+    pub fn toml(&self) -> String {
+        let h = self.spacing();
+        let coarse = if self.fine_band.is_some() { 2.0 * h } else { h };
+        // Grip bands: whole coarse spacings, at least a horizon deep.
+        let grip = self.horizon_factor.ceil() * coarse;
+        let (top, bottom) = (0.5 * LENGTH + grip, -0.5 * LENGTH - grip);
+        let mut t = String::new();
+        let _ = writeln!(
+            t,
+            "# SENT plate (validation/fracture): W = {WIDTH} m, free length L = {LENGTH} m between \
+             clamped grips,\n# edge notch a = {NOTCH} m along y = 0; spacing W/{}, m = {}.\n\
+             name = \"{}\"\n\n[model]\ndimension = \"plane_stress\"\nkind = \"{}\"\n\
+             horizons = \"{}\"\n\n[discretization]\nhorizon_factor = {}\n\n\
+             [materials.plate]\nyoungs_modulus = {YOUNGS_MODULUS:e}\n{}fracture_energy = {FRACTURE_ENERGY}\n",
+            self.cells,
+            self.horizon_factor,
+            self.name(),
+            self.model,
+            self.horizons,
+            self.horizon_factor,
+            if self.model == "shear" {
+                "poisson_ratio = 0.3333333333333333\n"
+            } else {
+                ""
+            }
+        );
+        let region = |t: &mut String, spacing: f64, y0: f64, y1: f64| {
+            let _ = writeln!(
+                t,
+                "[[regions]]\nmaterial = \"plate\"\nspacing = {spacing:e}\n\
+                 box = {{ min = [0.0, {y0:e}], max = [{WIDTH}, {y1:e}] }}\n"
+            );
+        };
+        match self.fine_band {
+            None => region(&mut t, h, bottom, top),
+            Some(band) => {
+                region(&mut t, h, -band, band);
+                region(&mut t, coarse, band, top);
+                region(&mut t, coarse, bottom, -band);
+            }
+        }
+        let (gx, gy) = match self.loading {
+            Loading::Tension => (0.0, GRIP_DISPLACEMENT),
+            Loading::Shear => (GRIP_DISPLACEMENT, 0.0),
+        };
+        let guard = 0.5 * LENGTH - 0.1 * WIDTH;
+        let _ = writeln!(
+            t,
+            "[[cracks]]\nfrom = [0.0, 0.0]\nto = [{NOTCH}, 0.0]\n\n\
+             [[boundary]]\nname = \"bottom\"\nbox = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }}\n\
+             displacement = {{ x = 0.0, y = 0.0 }}\n\n\
+             [[boundary]]\nname = \"top\"\nbox = {{ min = [0.0, {:e}], max = [{WIDTH}, {top:e}] }}\n\
+             displacement = {{ x = {gx:e}, y = {gy:e} }}\n\n\
+             [fracture]\nno_fail = [\n  {{ box = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }} }},\n  \
+             {{ box = {{ min = [0.0, {guard:e}], max = [{WIDTH}, {top:e}] }} }},\n]\n\n\
+             [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = 1.0",
+            -0.5 * LENGTH,
+            0.5 * LENGTH,
+            -guard,
+            self.strategy
+        );
+        if !self.stepping.is_empty() {
+            let _ = writeln!(t, "{}", self.stepping);
+        }
+        if let Some(f) = self.stop_after_peak {
+            let _ = writeln!(t, "stop_after_peak = {f}");
+        }
+        if let Some(n) = self.output_every {
+            let _ = writeln!(t, "\n[output]\nevery = {n}");
+        }
+        t
+    }
+
+    /// The validated scene.
+    pub fn scene(&self) -> Scene {
+        let spec = parse_spec(&self.toml(), false).expect("the SENT scene parses");
+        Scene::try_from_spec(spec, Path::new("."), "sent").expect("the SENT scene is valid")
+    }
+}

@@ -1,0 +1,253 @@
+//! Quasi-static fracture (issue 8): the damage rules, the three strategies,
+//! the invariants of a run (bonds never heal, damage never decreases, the
+//! reaction drops to zero when the crack crosses the ligament, the crack runs
+//! straight in mode I), the re-solve with the old factor, and what breaking
+//! does to the system (points left without bonds, separation, failure).
+
+mod common;
+
+use common::scene;
+use dhpd::assembly::stiffness::{self, Stiffness};
+use dhpd::drivers::quasi_static::{self, Observer, Outcome, Snapshot, StateKind, StepRecord};
+use dhpd::drivers::static_solve::{self, right_hand_side};
+use dhpd::error::Error;
+use dhpd::model::bond_based::BondBased;
+use dhpd::model::shear::Shear;
+use dhpd::model::Model;
+use dhpd::scene::Scene;
+use dhpd::solve::pipeline::{Pipeline, Route, SolverSettings};
+use dhpd::validation::fracture::Sent;
+
+/// Collects what a run shows, checking bonds and damage at every snapshot.
+#[derive(Default)]
+struct Watch {
+    records: Vec<StepRecord>,
+    intact: Option<Vec<bool>>,
+    damage: Option<Vec<f64>>,
+    snapshots: usize,
+}
+
+impl Observer for Watch {
+    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error> {
+        self.records.push(record.clone());
+        if let Some(s) = snapshot {
+            if let Some(before) = &self.intact {
+                for (b, (&was, &is)) in before.iter().zip(&s.disc.bonds.intact).enumerate() {
+                    assert!(was || !is, "bond {b} healed at step {}", s.step);
+                }
+            }
+            if let Some(before) = &self.damage {
+                for (i, (&was, &is)) in before.iter().zip(s.damage).enumerate() {
+                    assert!(is >= was, "damage of point {i} fell at step {}", s.step);
+                }
+            }
+            assert!(s.damage.iter().all(|&p| (0.0..=1.0).contains(&p)));
+            assert!(s.u.iter().flatten().all(|v| v.is_finite()));
+            self.intact = Some(s.disc.bonds.intact.clone());
+            self.damage = Some(s.damage.to_vec());
+            self.snapshots += 1;
+        }
+        Ok(())
+    }
+}
+
+fn run(scene: &Scene) -> (quasi_static::QuasiStaticSolution, Watch) {
+    let mut watch = Watch::default();
+    let prepared = static_solve::prepare(scene).expect("the scene prepares");
+    let solution = quasi_static::run(scene, prepared, &mut watch).expect("the run succeeds");
+    (solution, watch)
+}
+
+/// The largest top-grip reaction (y) over a run and the load factor there.
+fn peak(records: &[StepRecord], set: usize, axis: usize) -> (f64, f64) {
+    records
+        .iter()
+        .map(|r| (r.reactions[set][axis].abs(), r.load_factor))
+        .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a })
+}
+
+/// A 1D bar whose points follow the linear field `u = ε x` (every point is
+/// prescribed, one set per point): every bond has the stretch `ε`, so the first
+/// event is at exactly `λ* = s₀ / ε` with `s₀ = sqrt(3 G₀ / (E δ))`
+/// (formulation Sec. 3), every bond breaks there (a tie), and the bar falls
+/// apart: no bond, every reaction zero (separation).
+#[test]
+fn a_uniformly_stretched_bar_breaks_at_the_critical_stretch() {
+    let (e, g0, h, m, strain) = (2.0e11, 1.0e3, 0.01, 3.015, 1e-3);
+    let mut text = format!(
+        "[model]\ndimension = \"1d\"\n[discretization]\nhorizon_factor = {m}\n\
+         [materials.steel]\nyoungs_modulus = {e:e}\nfracture_energy = {g0:e}\n\
+         [[regions]]\nmaterial = \"steel\"\nspacing = {h}\nbox = {{ min = [0.0], max = [0.2] }}\n\
+         [quasi_static]\nmax_load_factor = 10.0\n"
+    );
+    // Every point but one is prescribed on the linear field; the free one (in
+    // the middle, with a full symmetric family) follows it exactly.
+    for k in (0..20).filter(|&k| k != 10) {
+        let x = (k as f64 + 0.5) * h;
+        text += &format!(
+            "[[boundary]]\nname = \"p{k}\"\nbox = {{ min = [{}], max = [{}] }}\ndisplacement = {{ x = {:e} }}\n",
+            x - 0.1 * h,
+            x + 0.1 * h,
+            strain * x
+        );
+    }
+    let scene = scene(&text);
+    let s0 = (3.0 * g0 / (e * m * h)).sqrt();
+    let expected = s0 / strain;
+    let (solution, watch) = run(&scene);
+    let first = watch
+        .records
+        .iter()
+        .find(|r| r.state == StateKind::Critical)
+        .expect("a bond breaks");
+    assert!(
+        (first.load_factor / expected - 1.0).abs() < 1e-12,
+        "λ* = {}, s₀/ε = {expected}",
+        first.load_factor
+    );
+    assert_eq!(
+        solution.records.last().unwrap().broken_total,
+        solution.bonds
+    );
+    assert!(solution.damage.iter().all(|&p| p == 1.0));
+}
+
+/// The largest distance from the line `y = 0`, over the columns of points
+/// ahead of `x_tip`, of the centroid of the most damaged points of the column
+/// (damage at least half the column's largest): where the crack runs.
+fn crack_deviation(disc: &dhpd::discretization::Discretization, damage: &[f64], x_tip: f64) -> f64 {
+    let x = &disc.points.x;
+    let mut columns: Vec<f64> = x.iter().map(|p| p[0]).filter(|&c| c > x_tip).collect();
+    columns.sort_by(f64::total_cmp);
+    columns.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    columns
+        .iter()
+        .filter_map(|&c| {
+            let column: Vec<usize> = (0..x.len())
+                .filter(|&i| (x[i][0] - c).abs() < 1e-9)
+                .collect();
+            let top = column.iter().map(|&i| damage[i]).fold(0.0, f64::max);
+            (top > 0.0).then(|| {
+                let cracked: Vec<usize> = column
+                    .into_iter()
+                    .filter(|&i| damage[i] >= 0.5 * top)
+                    .collect();
+                (cracked.iter().map(|&i| x[i][1]).sum::<f64>() / cracked.len() as f64).abs()
+            })
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A coarse SENT plate (bond-based, event strategy) run to complete
+/// separation, with a snapshot at every step: bonds never heal, damage never
+/// decreases (checked by [`Watch`]); the reaction rises to a peak and falls to
+/// zero (below 1e-6 of the peak) once the crack has crossed the ligament; the
+/// crack runs straight (mode I): in every column of points ahead of the notch,
+/// the most damaged points are centred within one spacing of the notch line.
+#[test]
+fn a_mode_one_crack_runs_straight_and_separates_the_plate() {
+    let mut case = Sent::new("bond_based", 20, 3.015);
+    case.output_every = Some(1);
+    let (solution, watch) = run(&case.scene());
+    assert!(
+        matches!(solution.outcome, Outcome::Separated { .. }),
+        "{:?}",
+        solution.outcome
+    );
+    assert!(watch.snapshots > 10);
+    let top = solution.set_names.iter().position(|n| n == "top").unwrap();
+    let (peak, _) = peak(&solution.records, top, 1);
+    let last = solution.records.last().unwrap().reactions[top][1].abs();
+    assert!(peak > 0.0 && last < 1e-6 * peak, "peak {peak}, last {last}");
+    let deviation = crack_deviation(&solution.disc, &solution.damage, 0.05);
+    assert!(
+        deviation <= case.spacing(),
+        "the crack leaves the notch line by {deviation} m"
+    );
+    // Every record is finite and the broken count never decreases.
+    for w in solution.records.windows(2) {
+        assert!(w[1].broken_total >= w[0].broken_total);
+    }
+}
+
+/// After bonds break, the re-solve that iterates with the previous factor as
+/// preconditioner (CG for the bond-based model, GMRES for the shear model)
+/// gives the same answer as a fresh factorisation, to 1e-10, and takes few
+/// iterations for a rank-k change.
+#[test]
+fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
+    for model_kind in ["bond_based", "shear"] {
+        let case = Sent::new(model_kind, 20, 3.015);
+        let scene = case.scene();
+        let prepared = static_solve::prepare(&scene).unwrap();
+        let (mut disc, dofs, f_ext) = (prepared.disc, prepared.dofs, prepared.f_ext);
+        let settings = SolverSettings::of(&scene);
+        let surrogate = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+        // Bonds that cross the ligament right ahead of the notch tip.
+        let ahead: Vec<usize> = (0..disc.points.len())
+            .flat_map(|i| disc.bonds.owned_by(i).map(move |b| (i, b)))
+            .filter(|&(i, b)| {
+                let j = disc.bonds.neighbour[b] as usize;
+                let (xi, xj) = (disc.points.x[i], disc.points.x[j]);
+                xi[1] * xj[1] < 0.0 && xi[0] < 0.06 && xj[0] < 0.06
+            })
+            .map(|(_, b)| b)
+            .collect();
+        assert!(ahead.len() > 4);
+        let (fresh, reused, iterations) = if model_kind == "bond_based" {
+            let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+            let mut pipeline =
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+            let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
+            let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
+            let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
+            for &bond in &ahead[..4] {
+                disc.bonds.intact[bond] = false;
+            }
+            stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
+            let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
+            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
+            assert_eq!(reused.report.route, Route::Reuse);
+            let mut other =
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+            let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
+            (fresh.x, reused.x, reused.report.iterations)
+        } else {
+            let mut model = Shear::new(&disc, scene.dimension, &scene.materials, false).unwrap();
+            let mut pipeline = Pipeline::analyse(
+                &disc,
+                &dofs,
+                model.coupling(),
+                settings,
+                Some(surrogate.clone()),
+            )
+            .unwrap();
+            let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
+            let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
+            let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
+            let mut owners = Vec::new();
+            for &bond in &ahead[..4] {
+                disc.bonds.intact[bond] = false;
+                owners.push(disc.bonds.offsets.partition_point(|&o| o <= bond) - 1);
+            }
+            assert!(model.refresh_owners(&disc, &owners).is_empty());
+            stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
+            let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
+            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
+            assert_eq!(reused.report.route, Route::Reuse);
+            let mut other =
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, Some(surrogate))
+                    .unwrap();
+            let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
+            (fresh.x, reused.x, reused.report.iterations)
+        };
+        let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+        let diff: Vec<f64> = fresh.iter().zip(&reused).map(|(a, b)| a - b).collect();
+        let relative = norm(&diff) / norm(&fresh);
+        assert!(
+            relative < 1e-10,
+            "{model_kind}: re-solve differs by {relative:e}"
+        );
+        println!("{model_kind}: re-solve after 4 broken bonds: {iterations} iterations, difference {relative:.1e}");
+    }
+}
