@@ -44,7 +44,7 @@ import scipy
 import skfem
 from skfem import MeshTri1
 
-from lefm_fem import (Model, displacement_correlation, e_prime, hoop_stress, lame,
+from lefm_fem import (Model, displacement_correlation, e_prime, hoop_stress,
                       mesh_quality, mts_angle, point_size_field,
                       graded_lines, refine_to_size, solve_grips,
                       split_crack, structured_tri, tip_integrals)

@@ -19,8 +19,8 @@ Method (scikit-fem, see lefm_fem.py):
     h = min(h_max, alpha * distance) around the crack tip and the four grip
     corners (clamped/free corners are weakly singular), then the crack is
     opened by duplicating the nodes on y = 0, 0 <= x < a (tip not duplicated);
-    mesh level l: alpha = 0.7 * 2^(-l/2), h_max = alpha * W / 2, smallest
-    element 1e-5 W at the tip and 1e-4 W at the grip corners;
+    mesh level l: alpha = 0.7 * 2^(-l/2), h_max = alpha * W / 2, distance
+    floor of the size field 1e-5 W at the tip and 1e-4 W at the grip corners;
   * P2 displacements (ElementVector(ElementTriP2)), condense + solve (SuperLU);
   * stiffness P/Delta from the reaction (residual K u summed over the top-edge
     DOFs; checked against 2 x strain energy), compliance C = Delta / P;
@@ -52,7 +52,6 @@ import argparse
 import json
 import os
 import platform
-import sys
 import time
 
 import numpy as np

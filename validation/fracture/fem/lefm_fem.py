@@ -37,7 +37,7 @@ behind the tip, K_I > 0 when the faces open.
 """
 import numpy as np
 
-from skfem import (Basis, BilinearForm, ElementTriP2, ElementVector, MeshTri1,
+from skfem import (Basis, BilinearForm, ElementTriP2, ElementVector,
                    asm, condense, solve)
 from skfem.helpers import ddot, div, sym_grad
 
@@ -186,7 +186,6 @@ def split_crack(p, t, segments, tips, tol=1e-10):
             sel = touches[k] & minus
             t[k, sel] = newid[t[k, sel]]
         faces.append((nodes, newid[nodes]))
-    # sanity: each crack edge must be present on both sides
     return p, t, faces
 
 
@@ -407,8 +406,10 @@ def displacement_correlation(mesh, u, basis, faces_plus, faces_minus, tip, e1,
                              E, nu, plane, rmax):
     """K_I, K_II from the crack-face displacement jump (vertex nodes only).
 
-    K(r) = E'/8 sqrt(2 pi / r) [u] (jump: +e2 face minus -e2 face, local
-    components); fitted linearly in r on 0 < r <= rmax and extrapolated to r = 0.
+    faces_plus / faces_minus: matching vertex rows on the +e2 / -e2 face of the
+    tip frame (the caller orders them).  K(r) = E'/8 sqrt(2 pi / r) [u] (jump:
+    +e2 face minus -e2 face, local components); fitted linearly in r on
+    0 < r <= rmax and extrapolated to r = 0.
     """
     tip = np.asarray(tip, float)
     e1 = np.asarray(e1, float) / np.linalg.norm(e1)
@@ -416,7 +417,6 @@ def displacement_correlation(mesh, u, basis, faces_plus, faces_minus, tip, e1,
     nd = basis.nodal_dofs
     P = mesh.p
     r = np.hypot(P[0, faces_plus] - tip[0], P[1, faces_plus] - tip[1])
-    # decide which node row is on the +e2 side using adjacent element centroids
     ux = u[nd[0]]
     uy = u[nd[1]]
     jx = ux[faces_plus] - ux[faces_minus]

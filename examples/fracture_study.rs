@@ -1,0 +1,500 @@
+//! Fracture validation studies (validation/fracture/README.md): the single-edge-
+//! notched tension (SENT) plate against LEFM for both models, the energy
+//! dissipated to separation, DH-PD with a fine band along the crack path, the
+//! three breakage strategies, and the kink of a crack under in-plane shear.
+//!
+//! ```text
+//! cargo run --release --example fracture_study -- lefm bond_based   # peak load sweep (δ/a, m)
+//! cargo run --release --example fracture_study -- lefm shear
+//! cargo run --release --example fracture_study -- energy bond_based # full separation: ∫P du vs G₀ A
+//! cargo run --release --example fracture_study -- band              # DH-PD fine band vs uniform
+//! cargo run --release --example fracture_study -- strategies        # event / all / most_critical
+//! cargo run --release --example fracture_study -- kink              # shear grip: kink angle
+//! cargo run --release --example fracture_study -- scenes            # write the scene files
+//! ```
+//!
+//! Results go to `validation/fracture/results/` (CSV); `validation/fracture/plot.py`
+//! draws the figures. Add `quick` after the study name for the coarse settings only.
+
+use dhpd::drivers::quasi_static::{self, Observer, QuasiStaticSolution, Snapshot, StepRecord};
+use dhpd::drivers::static_solve;
+use dhpd::error::Error;
+use dhpd::geometry::{norm, sub};
+use dhpd::output::csv::write_load_displacement;
+use dhpd::reference::FemReference;
+use dhpd::solve::pipeline::Route;
+use dhpd::validation::fracture::{Loading, Sent, FRACTURE_ENERGY, NOTCH, WIDTH};
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+const RESULTS: &str = "validation/fracture/results";
+
+/// The LEFM critical load of the SENT plate (FEM, clamped grips, a/W = 0.5).
+fn lefm_peak() -> f64 {
+    let text = std::fs::read_to_string("validation/fracture/fem/reference_sent.json")
+        .expect("run from the repository root");
+    let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    let case = &json["materials"]["plane_stress_nu_1/3"];
+    let a = case["a_over_W"].as_array().expect("a_over_W");
+    let k = a
+        .iter()
+        .position(|v| (v.as_f64().unwrap() - 0.5).abs() < 1e-12)
+        .expect("a/W = 0.5");
+    case["P_c"][k].as_f64().expect("P_c")
+}
+
+struct Quiet;
+impl Observer for Quiet {
+    fn record(&mut self, _: &StepRecord, _: Option<&Snapshot>) -> Result<(), Error> {
+        Ok(())
+    }
+}
+
+/// One run and what the studies read from it.
+struct Outcome {
+    solution: QuasiStaticSolution,
+    points: usize,
+    seconds: f64,
+    peak: f64,
+    first_break: f64,
+}
+
+fn run(case: &Sent) -> Outcome {
+    let scene = case.scene();
+    let t = Instant::now();
+    let prepared = static_solve::prepare(&scene).expect("the scene prepares");
+    let points = prepared.disc.points.len();
+    let solution = quasi_static::run(&scene, prepared, &mut Quiet).expect("the run succeeds");
+    let seconds = t.elapsed().as_secs_f64();
+    let top = solution.set_names.iter().position(|n| n == "top").unwrap();
+    let axis = if case.loading == Loading::Tension { 1 } else { 0 };
+    let peak = solution
+        .records
+        .iter()
+        .map(|r| r.reactions[top][axis].abs())
+        .fold(0.0, f64::max);
+    let first_break = solution
+        .records
+        .iter()
+        .find(|r| r.broken_total > 0)
+        .map_or(f64::NAN, |r| r.reactions[top][axis].abs());
+    let curve = Path::new(RESULTS).join(format!("curve_{}.csv", case.name()));
+    write_load_displacement(&curve, &solution).expect("results directory writable");
+    Outcome {
+        solution,
+        points,
+        seconds,
+        peak,
+        first_break,
+    }
+}
+
+/// Energy dissipated: at every event the reaction drops at fixed displacement,
+/// releasing `Δ (R_critical − R_broken) / 2`; summed to separation this is `∫ P du`.
+fn dissipated(s: &QuasiStaticSolution) -> f64 {
+    let top = s.set_names.iter().position(|n| n == "top").unwrap();
+    s.records
+        .windows(2)
+        .filter(|w| {
+            w[0].state == quasi_static::StateKind::Critical
+                && w[1].state == quasi_static::StateKind::Broken
+        })
+        .map(|w| 0.5 * w[1].displacement * (w[0].reactions[top][1] - w[1].reactions[top][1]))
+        .sum()
+}
+
+fn solves(s: &QuasiStaticSolution) -> (usize, usize) {
+    let reuse = s
+        .solves
+        .iter()
+        .filter(|x| x.report.route == Route::Reuse)
+        .count();
+    (s.solves.len() - reuse, reuse)
+}
+
+fn write(name: &str, text: &str) {
+    std::fs::create_dir_all(RESULTS).expect("results directory");
+    let path = Path::new(RESULTS).join(name);
+    std::fs::write(&path, text).expect("results writable");
+    println!("wrote {}", path.display());
+}
+
+/// Peak load against LEFM for δ/a ≈ 0.2, 0.1, 0.05 and m = 3, 4.
+fn lefm(model: &'static str, quick: bool) {
+    let reference = lefm_peak();
+    println!("LEFM (FEM, clamped grips, a/W = 0.5): P_c = {reference:.6e} N/m");
+    let mut csv = String::from(
+        "model,cells,m,delta_over_a,points,peak,lefm,error,first_break,fresh,reuse,seconds\n",
+    );
+    let grid: &[(usize, f64)] = match (model, quick) {
+        (_, true) => &[(30, 3.015), (40, 4.015)],
+        ("shear", false) => &[(30, 3.015), (40, 4.015), (60, 3.015), (80, 4.015)],
+        _ => &[
+            (30, 3.015),
+            (40, 4.015),
+            (60, 3.015),
+            (80, 4.015),
+            (120, 3.015),
+            (160, 4.015),
+        ],
+    };
+    for &(cells, m) in grid {
+        let mut case = Sent::new(model, cells, m);
+        case.stop_after_peak = Some(0.7);
+        let o = run(&case);
+        let (fresh, reuse) = solves(&o.solution);
+        let delta_a = case.horizon() / NOTCH;
+        println!(
+            "{model} W/Δx = {cells}, m = {m}, δ/a = {delta_a:.3}: {} points, peak {:.4e} N/m ({:+.1} %), first break at {:.3e}, {fresh} + {reuse} solves, {:.1} s",
+            o.points,
+            o.peak,
+            100.0 * (o.peak / reference - 1.0),
+            o.first_break,
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{model},{cells},{m},{delta_a:.4},{},{:.6e},{reference:.6e},{:.5},{:.6e},{fresh},{reuse},{:.2}",
+            o.points,
+            o.peak,
+            o.peak / reference - 1.0,
+            o.first_break,
+            o.seconds
+        );
+    }
+    write(&format!("lefm_{model}.csv"), &csv);
+}
+
+/// Full separation: work of the grip against `G₀ × ligament`, with the energy
+/// of the broken bonds at their critical stretch (bond-based).
+fn energy(model: &'static str, quick: bool) {
+    let area = FRACTURE_ENERGY * (WIDTH - NOTCH);
+    let mut csv = String::from(
+        "model,cells,m,points,dissipated_over_g0a,crossing_bonds_over_g0a,broken_on_line_over_g0a,broken_off_line_over_g0a,peak,seconds\n",
+    );
+    let grid: &[(usize, f64)] = if quick {
+        &[(30, 3.015)]
+    } else if model == "shear" {
+        &[(30, 3.015), (40, 4.015)]
+    } else {
+        &[(30, 3.015), (40, 4.015), (40, 3.015), (60, 3.015), (50, 5.015)]
+    };
+    for &(cells, m) in grid {
+        let case = Sent::new(model, cells, m);
+        let o = run(&case);
+        let w = dissipated(&o.solution);
+        let (crossing, on, off) = if model == "bond_based" {
+            bond_energies(&case, &o.solution)
+        } else {
+            (f64::NAN, f64::NAN, f64::NAN)
+        };
+        println!(
+            "{model} W/Δx = {cells}, m = {m}: ∫P du = {:.4} G₀A; bonds crossing the ligament at s₀: {crossing:.4} G₀A; broken on the line {on:.4}, off the line {off:.4}; {:.1} s",
+            w / area,
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{model},{cells},{m},{},{:.5},{crossing:.5},{on:.5},{off:.5},{:.6e},{:.2}",
+            o.points,
+            w / area,
+            o.peak,
+            o.seconds
+        );
+    }
+    write(&format!("energy_{model}.csv"), &csv);
+}
+
+/// Energies `C s₀² |ξ| V_i V_j ν / 2` (per unit G₀ × ligament) of: every bond
+/// crossing the ligament line (the continuum calibration of s₀, discretised),
+/// the broken bonds crossing it, and the broken bonds off it.
+fn bond_energies(case: &Sent, s: &QuasiStaticSolution) -> (f64, f64, f64) {
+    let scene = case.scene();
+    let bb = dhpd::model::bond_based::BondBased::new(
+        &s.disc,
+        scene.dimension,
+        &scene.materials,
+        scene.thickness,
+    );
+    let criterion = dhpd::damage::Criterion::new(&scene, &s.disc);
+    let (x, v, bonds) = (&s.disc.points.x, &s.disc.points.volume, &s.disc.bonds);
+    let (mut crossing, mut on, mut off) = (0.0, 0.0, 0.0);
+    for i in 0..x.len() {
+        for b in bonds.owned_by(i) {
+            let j = bonds.neighbour[b] as usize;
+            let s0 = criterion.critical(i);
+            let e = 0.5
+                * bb.micromodulus[i]
+                * s0
+                * s0
+                * norm(&sub(&x[j], &x[i]))
+                * v[i]
+                * v[j]
+                * bonds.volume_factor[b];
+            let crosses = x[i][1] * x[j][1] < 0.0 && {
+                let t = x[i][1] / (x[i][1] - x[j][1]);
+                x[i][0] + t * (x[j][0] - x[i][0]) > NOTCH
+            };
+            if crosses {
+                crossing += e;
+            }
+            if !bonds.intact[b] {
+                if crosses {
+                    on += e;
+                } else {
+                    off += e;
+                }
+            }
+        }
+    }
+    let area = FRACTURE_ENERGY * (WIDTH - NOTCH);
+    (crossing / area, on / area, off / area)
+}
+
+/// DH-PD where it matters: a fine band along the crack path, twice the spacing
+/// elsewhere, against the uniform fine and coarse plates and the
+/// constant-horizon baseline on the same points.
+fn band(quick: bool) {
+    let reference = lefm_peak();
+    let (cells, m) = if quick { (40, 3.015) } else { (80, 3.015) };
+    let fine = Sent::new("bond_based", cells, m);
+    let half = |cells_band: usize| cells_band as f64 * 2.0 * fine.spacing();
+    let mut banded = fine.clone();
+    banded.fine_band = Some(half(if quick { 4 } else { 6 }));
+    let mut constant = banded.clone();
+    constant.horizons = "constant";
+    let coarse = Sent::new("bond_based", cells / 2, m);
+    let mut csv = String::from("case,points,peak,error,deviation,seconds\n");
+    for (label, mut case) in [
+        ("uniform fine", fine),
+        ("DH-PD fine band", banded),
+        ("constant horizon, same points", constant),
+        ("uniform coarse", coarse),
+    ] {
+        case.stop_after_peak = Some(0.5);
+        let o = run(&case);
+        let deviation = crack_deviation(&o.solution, NOTCH, 0.0);
+        println!(
+            "{label}: {} points, peak {:.4e} N/m ({:+.1} % vs LEFM), crack within {:.2e} m of y = 0, {:.1} s",
+            o.points,
+            o.peak,
+            100.0 * (o.peak / reference - 1.0),
+            deviation,
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{label},{},{:.6e},{:.5},{deviation:.4e},{:.2}",
+            o.points,
+            o.peak,
+            o.peak / reference - 1.0,
+            o.seconds
+        );
+    }
+    write("band.csv", &csv);
+}
+
+/// The largest distance from `y = y0`, over the point columns ahead of
+/// `x_tip`, of the centroid of each column's most damaged points.
+fn crack_deviation(s: &QuasiStaticSolution, x_tip: f64, y0: f64) -> f64 {
+    let x = &s.disc.points.x;
+    let mut columns: Vec<f64> = x.iter().map(|p| p[0]).filter(|&c| c > x_tip).collect();
+    columns.sort_by(f64::total_cmp);
+    columns.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    columns
+        .iter()
+        .filter_map(|&c| {
+            let column: Vec<usize> = (0..x.len())
+                .filter(|&i| (x[i][0] - c).abs() < 1e-9)
+                .collect();
+            let top = column.iter().map(|&i| s.damage[i]).fold(0.0, f64::max);
+            (top > 0.0).then(|| {
+                let cracked: Vec<usize> = column
+                    .into_iter()
+                    .filter(|&i| s.damage[i] >= 0.5 * top)
+                    .collect();
+                (cracked.iter().map(|&i| x[i][1]).sum::<f64>() / cracked.len() as f64 - y0).abs()
+            })
+        })
+        .fold(0.0, f64::max)
+}
+
+/// The three strategies on one plate: curves, peaks, solves and times.
+fn strategies(quick: bool) {
+    let reference = lefm_peak();
+    let cells = if quick { 30 } else { 40 };
+    let mut csv = String::from("strategy,steps,peak,error,records,fresh,reuse,bonds,seconds\n");
+    for (strategy, stepping) in [
+        ("event", ""),
+        ("all", "steps = 100"),
+        ("all", "steps = 400"),
+        ("most_critical", "steps = 100"),
+        ("all", "steps = 100\nmax_broken_per_step = 4"),
+    ] {
+        let mut case = Sent::new("bond_based", cells, 3.015);
+        case.strategy = strategy;
+        case.stepping = stepping.into();
+        let o = run(&case);
+        let (fresh, reuse) = solves(&o.solution);
+        let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
+        let label = stepping.replace('\n', " ");
+        println!(
+            "{strategy} {label}: peak {:.4e} N/m ({:+.1} %), {} records, {fresh} + {reuse} solves, {broken} bonds, {:.1} s",
+            o.peak,
+            100.0 * (o.peak / reference - 1.0),
+            o.solution.records.len(),
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{strategy},{label},{:.6e},{:.5},{},{fresh},{reuse},{broken},{:.2}",
+            o.peak,
+            o.peak / reference - 1.0,
+            o.solution.records.len(),
+            o.seconds
+        );
+    }
+    write("strategies.csv", &csv);
+}
+
+/// Mode II: the shear grip on the notched plate; the direction in which the
+/// crack leaves the notch tip, against the maximum tangential stress criterion.
+fn kink(quick: bool) {
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string("validation/fracture/fem/reference_sent.json").unwrap(),
+    )
+    .unwrap();
+    let mts = json["mode_mixity_B"]["mts_kink_angle_deg"]
+        .as_f64()
+        .expect("MTS angle");
+    let mut csv = String::from("model,cells,m,kink_deg,mts_deg,broken,seconds\n");
+    let grid: &[(&'static str, usize, f64)] = if quick {
+        &[("shear", 30, 3.015)]
+    } else {
+        &[
+            ("shear", 30, 3.015),
+            ("shear", 40, 3.015),
+            ("shear", 60, 3.015),
+            ("bond_based", 40, 3.015),
+        ]
+    };
+    for &(model, cells, m) in grid {
+        let mut case = Sent::new(model, cells, m);
+        case.loading = Loading::Shear;
+        case.stop_after_peak = Some(0.5);
+        case.output_every = Some(1_000_000);
+        let o = run(&case);
+        let angle = kink_angle(&o.solution, 3.0 * case.horizon());
+        let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
+        println!(
+            "{model} W/Δx = {cells}: kink {angle:.1}° (MTS {mts:.1}°), {broken} bonds, {:.1} s",
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{model},{cells},{m},{angle:.3},{mts:.3},{broken},{:.2}",
+            o.seconds
+        );
+        write_damage(&case.name(), &o.solution);
+    }
+    write("kink.csv", &csv);
+}
+
+/// The direction (degrees from +x) from the notch tip to the centroid of the
+/// midpoints of the broken bonds within `radius` of it.
+fn kink_angle(s: &QuasiStaticSolution, radius: f64) -> f64 {
+    let (x, bonds) = (&s.disc.points.x, &s.disc.bonds);
+    let tip = [NOTCH, 0.0, 0.0];
+    let (mut sx, mut sy, mut n) = (0.0, 0.0, 0);
+    for i in 0..x.len() {
+        for b in bonds.owned_by(i).filter(|&b| !bonds.intact[b]) {
+            let j = bonds.neighbour[b] as usize;
+            let mid: [f64; 3] = std::array::from_fn(|a| 0.5 * (x[i][a] + x[j][a]));
+            let r = sub(&mid, &tip);
+            if norm(&r) <= radius {
+                sx += r[0];
+                sy += r[1];
+                n += 1;
+            }
+        }
+    }
+    if n == 0 {
+        f64::NAN
+    } else {
+        sy.atan2(sx).to_degrees()
+    }
+}
+
+/// Damage per point (x, y, damage) for the damage maps.
+fn write_damage(name: &str, s: &QuasiStaticSolution) {
+    let mut t = String::from("x,y,damage\n");
+    for (p, d) in s.disc.points.x.iter().zip(&s.damage) {
+        let _ = writeln!(t, "{:.6e},{:.6e},{:.4}", p[0], p[1], d);
+    }
+    write(&format!("damage_{name}.csv"), &t);
+}
+
+/// The scene files of every case the report shows.
+fn scenes() {
+    let dir = Path::new("validation/fracture/scenes");
+    std::fs::create_dir_all(dir).unwrap();
+    let mut cases = Vec::new();
+    for (model, cells, m) in [
+        ("bond_based", 30, 3.015),
+        ("bond_based", 40, 4.015),
+        ("bond_based", 60, 3.015),
+        ("bond_based", 80, 4.015),
+        ("bond_based", 120, 3.015),
+        ("bond_based", 160, 4.015),
+        ("shear", 30, 3.015),
+        ("shear", 40, 4.015),
+        ("shear", 60, 3.015),
+        ("shear", 80, 4.015),
+    ] {
+        let mut case = Sent::new(model, cells, m);
+        case.output_every = Some(50);
+        cases.push(case);
+    }
+    let mut banded = Sent::new("bond_based", 80, 3.015);
+    banded.fine_band = Some(12.0 * banded.spacing());
+    let mut constant = banded.clone();
+    constant.horizons = "constant";
+    cases.push(banded);
+    cases.push(constant);
+    for (strategy, stepping) in [("all", "steps = 100"), ("most_critical", "steps = 100")] {
+        let mut case = Sent::new("bond_based", 40, 3.015);
+        case.strategy = strategy;
+        case.stepping = stepping.into();
+        cases.push(case);
+    }
+    let mut shear = Sent::new("shear", 40, 3.015);
+    shear.loading = Loading::Shear;
+    shear.output_every = Some(20);
+    cases.push(shear);
+    for case in cases {
+        let path = dir.join(format!("{}.toml", case.name()));
+        std::fs::write(&path, case.toml()).unwrap();
+        println!("wrote {}", path.display());
+    }
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let quick = args.iter().any(|a| a == "quick");
+    let model = if args.iter().any(|a| a == "shear") {
+        "shear"
+    } else {
+        "bond_based"
+    };
+    let _ = FemReference::from_json; // the static references live in dhpd::reference
+    match args.first().map(String::as_str) {
+        Some("lefm") => lefm(model, quick),
+        Some("energy") => energy(model, quick),
+        Some("band") => band(quick),
+        Some("strategies") => strategies(quick),
+        Some("kink") => kink(quick),
+        Some("scenes") => scenes(),
+        _ => eprintln!("usage: fracture_study lefm|energy|band|strategies|kink|scenes [bond_based|shear] [quick]"),
+    }
+}
