@@ -68,7 +68,11 @@ fn run(case: &Sent) -> Outcome {
     let solution = quasi_static::run(&scene, prepared, &mut Quiet).expect("the run succeeds");
     let seconds = t.elapsed().as_secs_f64();
     let top = solution.set_names.iter().position(|n| n == "top").unwrap();
-    let axis = if case.loading == Loading::Tension { 1 } else { 0 };
+    let axis = if case.loading == Loading::Tension {
+        1
+    } else {
+        0
+    };
     let peak = solution
         .records
         .iter()
@@ -79,6 +83,7 @@ fn run(case: &Sent) -> Outcome {
         .iter()
         .find(|r| r.broken_total > 0)
         .map_or(f64::NAN, |r| r.reactions[top][axis].abs());
+    std::fs::create_dir_all(RESULTS).expect("results directory");
     let curve = Path::new(RESULTS).join(format!("curve_{}.csv", case.name()));
     write_load_displacement(&curve, &solution).expect("results directory writable");
     Outcome {
@@ -178,7 +183,13 @@ fn energy(model: &'static str, quick: bool) {
     } else if model == "shear" {
         &[(30, 3.015), (40, 4.015)]
     } else {
-        &[(30, 3.015), (40, 4.015), (40, 3.015), (60, 3.015), (50, 5.015)]
+        &[
+            (30, 3.015),
+            (40, 4.015),
+            (40, 3.015),
+            (60, 3.015),
+            (50, 5.015),
+        ]
     };
     for &(cells, m) in grid {
         let case = Sent::new(model, cells, m);
@@ -370,7 +381,7 @@ fn kink(quick: bool) {
         .expect("MTS angle");
     let mut csv = String::from("model,cells,m,kink_deg,mts_deg,broken,seconds\n");
     let grid: &[(&'static str, usize, f64)] = if quick {
-        &[("shear", 30, 3.015)]
+        &[("shear", 30, 3.015), ("bond_based", 30, 3.015)]
     } else {
         &[
             ("shear", 30, 3.015),
@@ -382,10 +393,12 @@ fn kink(quick: bool) {
     for &(model, cells, m) in grid {
         let mut case = Sent::new(model, cells, m);
         case.loading = Loading::Shear;
+        // LEFM initiation under the shear grip is at Δ = 2.24e-4 m (FEM, J = G_c).
+        case.max_load_factor = 10.0;
         case.stop_after_peak = Some(0.5);
         case.output_every = Some(1_000_000);
         let o = run(&case);
-        let angle = kink_angle(&o.solution, 3.0 * case.horizon());
+        let angle = kink_angle(&o.solution, [NOTCH, 0.0, 0.0], 3.0 * case.horizon());
         let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
         println!(
             "{model} W/Δx = {cells}: kink {angle:.1}° (MTS {mts:.1}°), {broken} bonds, {:.1} s",
@@ -398,14 +411,54 @@ fn kink(quick: bool) {
         );
         write_damage(&case.name(), &o.solution);
     }
+    // Mixed mode: the inclined centre crack under tension (K_I ≈ K_II).
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string("validation/fracture/fem/reference_inclined.json").unwrap(),
+    )
+    .unwrap();
+    let _ = &json;
+    let mts_inclined = -8.04;
+    let grid: &[(&'static str, usize)] = if quick {
+        &[("shear", 30), ("bond_based", 30)]
+    } else {
+        &[
+            ("shear", 40),
+            ("shear", 60),
+            ("bond_based", 40),
+            ("bond_based", 60),
+        ]
+    };
+    for &(model, cells) in grid {
+        let mut case = Sent::new(model, cells, 3.015);
+        case.inclined = true;
+        case.max_load_factor = 10.0;
+        case.stop_after_peak = Some(0.5);
+        let o = run(&case);
+        // Each tip's kink against its own MTS direction (point symmetric: 180° apart).
+        let tips = dhpd::validation::fracture::inclined_tips();
+        let radius = 3.0 * case.horizon();
+        let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
+        for (tip, mts) in tips.iter().zip([mts_inclined, mts_inclined + 180.0]) {
+            let angle = kink_angle(&o.solution, *tip, radius);
+            println!(
+                "inclined, {model} W/Δx = {cells}: tip ({:.4}, {:.4}): kink {angle:.1}° from +x (MTS {mts:.1}°), {broken} bonds, {:.1} s",
+                tip[0], tip[1], o.seconds
+            );
+            let _ = writeln!(
+                csv,
+                "{model} inclined tip ({:.4} {:.4}),{cells},3.015,{angle:.3},{mts:.3},{broken},{:.2}",
+                tip[0], tip[1], o.seconds
+            );
+        }
+        write_damage(&case.name(), &o.solution);
+    }
     write("kink.csv", &csv);
 }
 
-/// The direction (degrees from +x) from the notch tip to the centroid of the
-/// midpoints of the broken bonds within `radius` of it.
-fn kink_angle(s: &QuasiStaticSolution, radius: f64) -> f64 {
+/// The direction (degrees from +x, in (−180°, 180°]) from `tip` to the centroid
+/// of the midpoints of the broken bonds within `radius` of it (NaN if none).
+fn kink_angle(s: &QuasiStaticSolution, tip: [f64; 3], radius: f64) -> f64 {
     let (x, bonds) = (&s.disc.points.x, &s.disc.bonds);
-    let tip = [NOTCH, 0.0, 0.0];
     let (mut sx, mut sy, mut n) = (0.0, 0.0, 0);
     for i in 0..x.len() {
         for b in bonds.owned_by(i).filter(|&b| !bonds.intact[b]) {
@@ -470,6 +523,7 @@ fn scenes() {
     }
     let mut shear = Sent::new("shear", 40, 3.015);
     shear.loading = Loading::Shear;
+    shear.max_load_factor = 10.0;
     shear.output_every = Some(20);
     cases.push(shear);
     for case in cases {

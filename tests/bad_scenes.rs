@@ -46,6 +46,9 @@ const LEFT_BC: &str = "[[boundary]]\nname = \"left\"\nbox = { min = [0.0, 0.0], 
 /// A traction on the left face balancing the base scene's pull.
 const LEFT_PULL: &str = "\n[[loads]]\nname = \"pull_left\"\nkind = \"traction\"\nface = \"-x\"\nbox = { min = [0.0, 0.0], max = [0.01, 0.1] }\nvalue = [-1.0e6, 0.0]\n";
 
+/// A quasi-static section (for the fracture cases).
+const QS: &str = "\n[quasi_static]\nmax_load_factor = 1.0\n";
+
 /// Two valid rows (x y volume) to the right of the plate, touching nothing else.
 const ROWS_OK: &str = "0.30 0.05 1e-6\n0.31 0.05 1e-6\n";
 
@@ -235,8 +238,30 @@ const CASES: &[Case] = &[
     c("check_point_file_duplicate_points", &[Check, Add(PF)], Some("0.30 0.05 1e-6\n0.30 0.05 1e-6\n"), 2, &["point_files[0]", "line 2"]),
     c("name_empty_default_out", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"\"")], None, 2, &["name"]),
     c("name_parent_dir_default_out", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"../escaped\"")], None, 2, &["name"]),
+    // --- fracture (quasi-static) ---
+    c("fracture_energy_in_a_static_scene", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0")], None, 2, &["materials.soft.fracture_energy", "[quasi_static]"]),
+    c("two_fracture_parameters", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0\ncritical_stretch = 1e-3"), Add(QS)], None, 2, &["materials.soft.critical_stretch", "one fracture parameter"]),
+    c("deviatoric_strain_for_bond_based", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ncritical_deviatoric_strain = 1e-3"), Add(QS)], None, 2, &["materials.soft.critical_deviatoric_strain", "stretch"]),
+    c("critical_stretch_for_shear", &[Rep("thickness = 0.01", "thickness = 0.01\nkind = \"shear\""), Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ncritical_stretch = 1e-3"), Add(QS)], None, 2, &["materials.soft.critical_stretch", "deviatoric"]),
+    c("negative_fracture_energy", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = -100.0"), Add(QS)], None, 2, &["materials.soft.fracture_energy", "finite positive"]),
+    c("nan_critical_stretch", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ncritical_stretch = nan"), Add(QS)], None, 2, &["materials.soft.critical_stretch"]),
+    c("quasi_static_without_fracture_parameter", &[Add(QS)], None, 2, &["quasi_static", "fracture parameter"]),
+    c("quasi_static_without_max_load_factor", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nstrategy = \"event\"\n")], None, 2, &["quasi_static", "max_load_factor"]),
+    c("negative_max_load_factor", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = -1.0\n")], None, 2, &["quasi_static.max_load_factor"]),
+    c("unknown_strategy", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"arc_length\"\n")], None, 2, &["quasi_static.strategy", "arc_length"]),
+    c("steps_with_event_strategy", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nsteps = 10\n")], None, 2, &["quasi_static.steps", "applies to strategy"]),
+    c("max_events_with_all", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\nmax_events = 10\n")], None, 2, &["quasi_static.max_events", "event"]),
+    c("zero_steps", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\nsteps = 0\n")], None, 2, &["quasi_static.steps", "1..="]),
+    c("tolerance_above_one", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"most_critical\"\ntolerance = 1.5\n")], None, 2, &["quasi_static.tolerance", "[0, 1)"]),
+    c("stop_after_peak_above_one", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstop_after_peak = 2.0\n")], None, 2, &["quasi_static.stop_after_peak", "(0, 1)"]),
+    c("quasi_static_with_nothing_loaded", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Rep("value = [1.0e6, 0.0]", "value = [0.0, 0.0]"), Add(QS)], None, 2, &["quasi_static", "zero"]),
+    c("fracture_section_in_a_static_scene", &[Add("\n[fracture]\nshear_energy = \"pair\"\n")], None, 2, &["fracture", "[quasi_static]"]),
+    c("unknown_shear_energy_counting", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[fracture]\nshear_energy = \"both\"\n")], None, 2, &["fracture.shear_energy", "both"]),
+    c("no_fail_box_with_three_coordinates", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[[fracture.no_fail]]\nbox = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1] }\n")], None, 2, &["fracture.no_fail[0].box.min", "needs 2"]),
+    c("output_every_zero", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[output]\nevery = 0\n")], None, 2, &["output.every"]),
+    c("output_every_in_a_static_scene", &[Add("\n[output]\nevery = 5\n")], None, 2, &["output.every", "fracture runs"]),
+    c("refactor_iterations_in_a_static_scene", &[Add("\n[solver]\nrefactor_iterations = 5\n")], None, 2, &["solver.refactor_iterations", "fracture runs"]),
 ];
-
 /// A per-case temporary directory, removed on drop.
 struct TempDir(PathBuf);
 

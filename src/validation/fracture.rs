@@ -62,6 +62,20 @@ pub struct Sent {
     pub stop_after_peak: Option<f64>,
     /// `output.every`.
     pub output_every: Option<usize>,
+    /// `quasi_static.max_load_factor` (the grip moves `GRIP_DISPLACEMENT` at 1).
+    pub max_load_factor: f64,
+    /// Instead of the edge notch, a centre crack through `(W/2, 0)` at 45° to
+    /// `x`, half-length [`INCLINED_HALF_LENGTH`] (mixed mode under tension).
+    pub inclined: bool,
+}
+
+/// Half-length of the inclined centre crack (m).
+pub const INCLINED_HALF_LENGTH: f64 = 0.015;
+
+/// The tips of the inclined centre crack: `(W/2 ± c cos45°, ± c sin45°)`.
+pub fn inclined_tips() -> [[f64; 3]; 2] {
+    let h = INCLINED_HALF_LENGTH * std::f64::consts::FRAC_1_SQRT_2;
+    [[0.5 * WIDTH + h, h, 0.0], [0.5 * WIDTH - h, -h, 0.0]]
 }
 
 impl Sent {
@@ -78,6 +92,8 @@ impl Sent {
             loading: Loading::Tension,
             stop_after_peak: None,
             output_every: None,
+            max_load_factor: 1.0,
+            inclined: false,
         }
     }
 
@@ -108,6 +124,9 @@ impl Sent {
         }
         if self.loading == Loading::Shear {
             name.push_str("_shear_loading");
+        }
+        if self.inclined {
+            name.push_str("_inclined");
         }
         name
     }
@@ -159,20 +178,31 @@ impl Sent {
             Loading::Shear => (GRIP_DISPLACEMENT, 0.0),
         };
         let guard = 0.5 * LENGTH - 0.1 * WIDTH;
+        let [upper, lower] = inclined_tips();
+        let (from, to) = if self.inclined {
+            ([lower[0], lower[1]], [upper[0], upper[1]])
+        } else {
+            ([0.0, 0.0], [NOTCH, 0.0])
+        };
         let _ = writeln!(
             t,
-            "[[cracks]]\nfrom = [0.0, 0.0]\nto = [{NOTCH}, 0.0]\n\n\
+            "[[cracks]]\nfrom = [{:e}, {:e}]\nto = [{:e}, {:e}]\n\n\
              [[boundary]]\nname = \"bottom\"\nbox = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }}\n\
              displacement = {{ x = 0.0, y = 0.0 }}\n\n\
              [[boundary]]\nname = \"top\"\nbox = {{ min = [0.0, {:e}], max = [{WIDTH}, {top:e}] }}\n\
              displacement = {{ x = {gx:e}, y = {gy:e} }}\n\n\
              [fracture]\nno_fail = [\n  {{ box = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }} }},\n  \
              {{ box = {{ min = [0.0, {guard:e}], max = [{WIDTH}, {top:e}] }} }},\n]\n\n\
-             [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = 1.0",
+             [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = {}",
+            from[0],
+            from[1],
+            to[0],
+            to[1],
             -0.5 * LENGTH,
             0.5 * LENGTH,
             -guard,
-            self.strategy
+            self.strategy,
+            self.max_load_factor
         );
         if !self.stepping.is_empty() {
             let _ = writeln!(t, "{}", self.stepping);
