@@ -15,6 +15,7 @@ use dhpd::model::bond_based::BondBased;
 use dhpd::model::shear::Shear;
 use dhpd::model::Model;
 use dhpd::scene::Scene;
+use dhpd::solve::low_rank::Term;
 use dhpd::solve::pipeline::{Pipeline, Route, SolverSettings};
 use dhpd::validation::fracture::Sent;
 
@@ -206,11 +207,47 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             }
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
-            assert_eq!(reused.report.route, Route::Reuse);
             let mut other =
                 Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
             let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
+            // The exact low-rank update of the old factor (one term per broken bond).
+            let mut updated =
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+            let mut intact = disc.clone();
+            intact.bonds.intact.iter_mut().for_each(|f| *f = true);
+            let k0 = Stiffness::assemble(&model, &intact, &dofs, updated.pattern());
+            let b0 = right_hand_side(&model, &intact, &dofs, &f_ext, 1.0);
+            updated.solve(&intact, &dofs, &k0, &b0).unwrap();
+            let free = |i: usize, c: usize| dofs.free_index[3 * i + c] as usize;
+            let terms = ahead[..4]
+                .iter()
+                .map(|&bond| {
+                    let owner = disc.bonds.offsets.partition_point(|&o| o <= bond) - 1;
+                    let j = disc.bonds.neighbour[bond] as usize;
+                    let (stiffness, e) = model.bond_stiffness(&disc, owner, bond).unwrap();
+                    Term {
+                        entries: (0..2)
+                            .map(|c| (free(owner, c), e[c]))
+                            .chain((0..2).map(|c| (free(j, c), -e[c])))
+                            .collect(),
+                        stiffness,
+                    }
+                })
+                .collect();
+            let update = updated
+                .resolve_update(&disc, &dofs, &k, &b, &x0, terms)
+                .unwrap();
+            assert_eq!(update.report.route, Route::Update);
+            let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+            let diff: Vec<f64> = fresh.x.iter().zip(&update.x).map(|(a, c)| a - c).collect();
+            let relative = norm(&diff) / norm(&fresh.x);
+            assert!(
+                relative < 1e-10,
+                "the low-rank update differs by {relative:e}"
+            );
+            println!("bond_based: low-rank update after 4 broken bonds: difference {relative:.1e}");
+            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
+            assert_eq!(reused.report.route, Route::Reuse);
             (fresh.x, reused.x, reused.report.iterations)
         } else {
             let mut model = Shear::new(&disc, scene.dimension, &scene.materials, false).unwrap();

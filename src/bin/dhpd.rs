@@ -131,17 +131,17 @@ fn print_fracture_report(scene: &Scene, s: &quasi_static::QuasiStaticSolution, d
         s.nnz_l.map_or("-".into(), |v| v.to_string())
     );
     let broken = s.records.last().map_or(0, |r| r.broken_total);
-    let (fresh, reuse): (Vec<_>, Vec<_>) = s
-        .solves
-        .iter()
-        .partition(|x| x.report.route == dhpd::solve::pipeline::Route::Factor);
+    let count = |route| s.solves.iter().filter(|x| x.report.route == route).count();
+    use dhpd::solve::pipeline::Route;
     println!(
-        "{} records, {} bonds broken, {} solves ({} with a fresh factorisation, {} reusing the factor); {}",
+        "{} records, {} bonds broken, {} solves ({} fresh factorisations, {} low-rank updates of the factor, \
+         {} Krylov re-solves with the old factor); {}",
         s.records.len(),
         broken,
         s.solves.len(),
-        fresh.len(),
-        reuse.len(),
+        count(Route::Factor),
+        count(Route::Update),
+        count(Route::Reuse),
         s.outcome.describe()
     );
     for (k, name) in s.set_names.iter().enumerate() {

@@ -54,6 +54,7 @@ use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
 use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
+use crate::solve::low_rank::Term;
 use crate::solve::pipeline::{Pipeline, SolveReport, Solved, SolverSettings};
 use serde::Serialize;
 use std::time::Instant;
@@ -773,6 +774,49 @@ impl<M: Model> Run<'_, M> {
         None
     }
 
+    /// The rank-one terms `k g gᵀ` that the bonds broken since the last solve
+    /// removed from `K` (one per broken pair of points), when the model's bonds
+    /// are rank-one ([`Model::bond_stiffness`]) and no point was newly held.
+    fn low_rank_terms(&self) -> Option<Vec<Term>> {
+        if !self.newly_held.is_empty() {
+            return None;
+        }
+        let bonds = &self.disc.bonds;
+        let mut pairs: std::collections::BTreeMap<(usize, usize), (f64, [f64; 3])> =
+            Default::default();
+        for &b in &self.recent {
+            let owner = bonds.offsets.partition_point(|&o| o <= b) - 1;
+            let j = bonds.neighbour[b] as usize;
+            let (k, e) = self.model.bond_stiffness(&self.disc, owner, b)?;
+            // Oriented from the lower to the higher point index.
+            let (key, e) = if owner < j {
+                ((owner, j), e)
+            } else {
+                ((j, owner), e.map(|v| -v))
+            };
+            pairs.entry(key).or_insert((0.0, e)).0 += k;
+        }
+        let d = self.disc.d;
+        let free = |i: usize, c: usize| {
+            let k = self.dofs.free_index[3 * i + c];
+            (k != crate::assembly::dofs::PRESCRIBED).then_some(k as usize)
+        };
+        Some(
+            pairs
+                .into_iter()
+                .map(|((a, b), (stiffness, e))| Term {
+                    entries: (0..d)
+                        .filter_map(|c| free(a, c).map(|k| (k, e[c])))
+                        .chain((0..d).filter_map(|c| free(b, c).map(|k| (k, -e[c]))))
+                        .filter(|&(_, v)| v != 0.0)
+                        .collect(),
+                    stiffness,
+                })
+                .filter(|t| !t.entries.is_empty())
+                .collect(),
+        )
+    }
+
     /// The point columns of `K` that changed since the last solve: the ends of
     /// the broken bonds (star coupling) or every point of the families of their
     /// owners (family coupling), and the newly held points. `None`: all.
@@ -805,6 +849,7 @@ impl<M: Model> Run<'_, M> {
     /// Only the columns of `K` that bonds broken since the last solve touch are
     /// refilled, and `b` only when those include a prescribed point.
     fn solve(&mut self, step: usize, first: bool) -> Result<(), Error> {
+        let terms = if first { None } else { self.low_rank_terms() };
         let columns = self.changed_columns(first);
         stiffness::fill_columns(
             &self.model,
@@ -851,6 +896,15 @@ impl<M: Model> Run<'_, M> {
         let Solved { x, report } = if first {
             self.pipeline
                 .solve(&self.disc, &self.dofs, &self.stiffness, &rhs)?
+        } else if let Some(terms) = terms {
+            self.pipeline.resolve_update(
+                &self.disc,
+                &self.dofs,
+                &self.stiffness,
+                &rhs,
+                &self.x,
+                terms,
+            )?
         } else {
             self.pipeline
                 .resolve(&self.disc, &self.dofs, &self.stiffness, &rhs, &self.x)?

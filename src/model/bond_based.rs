@@ -193,6 +193,16 @@ impl Model for BondBased {
         None
     }
 
+    fn bond_stiffness(&self, disc: &Discretization, i: usize, b: usize) -> Option<(f64, [f64; 3])> {
+        let p = &disc.points;
+        let j = disc.bonds.neighbour[b] as usize;
+        let xi = sub(&p.x[j], &p.x[i]);
+        let len = norm(&xi);
+        let k =
+            self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b] / len;
+        Some((k, xi.map(|v| v / len)))
+    }
+
     fn tangent_column(
         &self,
         disc: &Discretization,

@@ -71,6 +71,19 @@ pub trait Model: Sync + Send {
         Vec::new()
     }
 
+    /// For a model whose tangent contribution of bond `b` (owned by `owner`) is
+    /// the rank-one `k e ⊗ e` on `(owner, neighbour)` blocks (`+` on the
+    /// diagonal blocks, `−` off them): `(k, e)`. Lets a solver update its factor
+    /// exactly when the bond breaks. `None` otherwise (default).
+    fn bond_stiffness(
+        &self,
+        _disc: &Discretization,
+        _owner: usize,
+        _b: usize,
+    ) -> Option<(f64, [f64; 3])> {
+        None
+    }
+
     /// Recovered stress at `owner` for displacements `u` (linearised), if the model
     /// defines one.
     fn stress(&self, _disc: &Discretization, _owner: usize, _u: &[[f64; 3]]) -> Option<Block> {

@@ -8,6 +8,7 @@
 
 pub mod cg;
 pub mod gmres;
+pub mod low_rank;
 pub mod pipeline;
 
 use crate::error::{MemoryLimit, NumericalError};
@@ -210,6 +211,23 @@ impl Cholesky {
         LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
             Conj::No,
             MatMut::from_column_major_slice_mut(b, n, 1),
+            par,
+            MemStack::new(&mut mem),
+        );
+    }
+}
+
+impl Cholesky {
+    /// Solves `K X = B` in place for the `columns` columns of `B`, stored one
+    /// after the other in `b` (one blocked pass through the factor).
+    pub fn solve_columns_in_place(&self, b: &mut [f64], columns: usize) {
+        assert!(self.factored, "solve before a successful factorisation");
+        let par = faer::get_global_parallelism();
+        let n = b.len() / columns.max(1);
+        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(columns, par));
+        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+            Conj::No,
+            MatMut::from_column_major_slice_mut(b, n, columns),
             par,
             MemStack::new(&mut mem),
         );

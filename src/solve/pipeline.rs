@@ -29,6 +29,7 @@
 
 use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
+use super::low_rank::{LowRank, Term};
 use super::{
     check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
     GMRES_TOLERANCE,
@@ -56,6 +57,14 @@ const SYMMETRIC_PART_BUDGET: usize = 600;
 
 /// GMRES restart length.
 const GMRES_RESTART: usize = 60;
+
+/// An update solve that costs more than this fraction of a fresh factorisation
+/// and solve makes the next re-solve factorise afresh.
+const UPDATE_BUDGET: f64 = 0.2;
+
+/// Largest memory for the columns of the low-rank update (bytes), unless the
+/// factor itself is larger.
+const UPDATE_MEMORY: usize = 256 << 20;
 
 /// Bounds of the automatic refactorisation threshold (iterations).
 const AUTO_REFACTOR_MIN: usize = 4;
@@ -91,6 +100,9 @@ pub enum Route {
     Factor,
     /// A Krylov solve preconditioned by the previous factor.
     Reuse,
+    /// The previous factor updated by the rank-one terms of the broken bonds
+    /// (Sherman–Morrison–Woodbury, [`super::low_rank`]): exact, no iteration.
+    Update,
 }
 
 impl Route {
@@ -99,6 +111,7 @@ impl Route {
         match self {
             Route::Factor => "factor",
             Route::Reuse => "reuse",
+            Route::Update => "update",
         }
     }
 }
@@ -185,6 +198,12 @@ pub struct Pipeline {
     costs: Costs,
     /// Free unknowns held at zero (fracture runs) and the diagonal they get.
     pinned: Option<(Vec<bool>, f64)>,
+    /// Rank-one terms removed since the factorisation (bond-based re-solves).
+    low_rank: LowRank,
+    /// The last right-hand side and `M⁻¹` of it (the old factor's solve).
+    factor_solution: Option<(Vec<f64>, Vec<f64>)>,
+    /// An update cost more than [`UPDATE_BUDGET`] of a fresh solve: factorise next time.
+    refactor_next: bool,
     /// Symbolic analysis time (s).
     pub symbolic_seconds: f64,
     /// Sparsity pattern time (s).
@@ -240,6 +259,9 @@ impl Pipeline {
             factored: false,
             costs: Costs::default(),
             pinned: None,
+            low_rank: LowRank::default(),
+            factor_solution: None,
+            refactor_next: false,
             symbolic_seconds: t.elapsed().as_secs_f64(),
             pattern_seconds,
         })
@@ -438,6 +460,9 @@ impl Pipeline {
         }
         let solve_seconds = t.elapsed().as_secs_f64();
         self.accept(&x, residual, refinement_steps)?;
+        self.low_rank.clear();
+        self.refactor_next = false;
+        self.factor_solution = (self.source == Source::Matrix).then(|| (rhs.to_vec(), x.clone()));
         self.costs.fresh_seconds = factor_seconds + solve_seconds;
         self.costs.fresh_residual = residual;
         if self.costs.iteration_seconds == 0.0 {
@@ -483,7 +508,7 @@ impl Pipeline {
             && matches!(self.factor, Factor::Cholesky(_));
         let report = if cg {
             let apply = |v: &[f64]| self.product(k, v);
-            let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+            let precondition = |v: &mut [f64]| self.precondition(v);
             pcg(&apply, &precondition, rhs, &mut x, tolerance, cap)
         } else {
             self.gmres_to(k, rhs, &mut x, cap, tolerance)
@@ -527,7 +552,7 @@ impl Pipeline {
         tolerance: f64,
     ) -> GmresReport {
         let apply = |v: &[f64]| self.product(k, v);
-        let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+        let precondition = |v: &mut [f64]| self.precondition(v);
         gmres(
             &apply,
             &precondition,
@@ -537,6 +562,79 @@ impl Pipeline {
             GMRES_RESTART,
             budget,
         )
+    }
+
+    /// The old factor's solve, corrected by the low-rank terms removed since.
+    fn precondition(&self, v: &mut [f64]) {
+        self.factor.solve_in_place(v);
+        if !self.low_rank.is_empty() {
+            let x = self.low_rank.apply(v);
+            v.copy_from_slice(&x);
+        }
+    }
+
+    /// Re-solves after `K` lost the rank-one `terms` (bonds that broke) since
+    /// the last solve, updating the old Cholesky factor exactly (module docs of
+    /// [`super::low_rank`]); falls back to [`Pipeline::resolve`] when the route
+    /// has no Cholesky factor of `K`, when the update would cost more than a
+    /// fresh factorisation is worth, or when its answer misses the tolerance.
+    pub fn resolve_update(
+        &mut self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+        rhs: &[f64],
+        x0: &[f64],
+        terms: Vec<Term>,
+    ) -> Result<Solved, Error> {
+        let chol = match (&self.factor, self.source, self.factored) {
+            (Factor::Cholesky(c), Source::Matrix, true) if self.symmetric => c,
+            _ => return self.resolve(disc, dofs, k, rhs, x0),
+        };
+        let memory = UPDATE_MEMORY.max(chol.nnz_l() * 8);
+        let grown = self.low_rank.bytes() + terms.len() * rhs.len() * 8;
+        if self.refactor_next || grown > memory {
+            return self.solve(disc, dofs, k, rhs);
+        }
+        let t = Instant::now();
+        let n = rhs.len();
+        if !self.low_rank.extend(terms, n, &|v: &mut [f64], m| {
+            chol.solve_columns_in_place(v, m)
+        }) {
+            // K is no longer positive definite: a fresh factorisation names the point.
+            return self.solve(disc, dofs, k, rhs);
+        }
+        let y = match &self.factor_solution {
+            Some((b, y)) if b.as_slice() == rhs => y.clone(),
+            _ => {
+                let mut y = rhs.to_vec();
+                chol.solve_in_place(&mut y);
+                self.factor_solution = Some((rhs.to_vec(), y.clone()));
+                y
+            }
+        };
+        let x = self.low_rank.apply(&y);
+        let residual = relative_residual(&self.product(k, &x), rhs);
+        let elapsed = t.elapsed().as_secs_f64();
+        let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
+        if !(residual <= tolerance && x.iter().all(|v| v.is_finite())) {
+            let mut fallback = self.resolve(disc, dofs, k, rhs, &x)?;
+            fallback.report.solve_seconds += elapsed;
+            return Ok(fallback);
+        }
+        self.refactor_next = elapsed > UPDATE_BUDGET * self.costs.fresh_seconds;
+        Ok(Solved {
+            x,
+            report: SolveReport {
+                route: Route::Update,
+                iterations: 0,
+                refinement_steps: 0,
+                residual,
+                factor_seconds: 0.0,
+                solve_seconds: elapsed,
+                gmres: None,
+            },
+        })
     }
 
     fn budget(&self) -> usize {
