@@ -109,13 +109,15 @@ fn dissipated(s: &QuasiStaticSolution) -> f64 {
         .sum()
 }
 
+/// Solves with a fresh factorisation, and re-solves with the old factor (low-rank
+/// update or Krylov).
 fn solves(s: &QuasiStaticSolution) -> (usize, usize) {
-    let reuse = s
+    let fresh = s
         .solves
         .iter()
-        .filter(|x| x.report.route == Route::Reuse)
+        .filter(|x| x.report.route == Route::Factor)
         .count();
-    (s.solves.len() - reuse, reuse)
+    (fresh, s.solves.len() - fresh)
 }
 
 fn write(name: &str, text: &str) {
@@ -335,14 +337,18 @@ fn crack_deviation(s: &QuasiStaticSolution, x_tip: f64, y0: f64) -> f64 {
 fn strategies(quick: bool) {
     let reference = lefm_peak();
     let cells = if quick { 30 } else { 40 };
-    let mut csv = String::from("strategy,steps,peak,error,records,fresh,reuse,bonds,seconds\n");
-    for (strategy, stepping) in [
+    let mut csv =
+        String::from("strategy,steps,peak,error,records,fresh,reuse,bonds,seconds,curve\n");
+    for (k, (strategy, stepping)) in [
         ("event", ""),
         ("all", "steps = 100"),
         ("all", "steps = 400"),
         ("most_critical", "steps = 100"),
         ("all", "steps = 100\nmax_broken_per_step = 4"),
-    ] {
+    ]
+    .into_iter()
+    .enumerate()
+    {
         let mut case = Sent::new("bond_based", cells, 3.015);
         case.strategy = strategy;
         case.stepping = stepping.into();
@@ -350,6 +356,9 @@ fn strategies(quick: bool) {
         let (fresh, reuse) = solves(&o.solution);
         let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
         let label = stepping.replace('\n', " ");
+        let curve = format!("curve_strategy_{k}.csv");
+        write_load_displacement(&Path::new(RESULTS).join(&curve), &o.solution)
+            .expect("results writable");
         println!(
             "{strategy} {label}: peak {:.4e} N/m ({:+.1} %), {} records, {fresh} + {reuse} solves, {broken} bonds, {:.1} s",
             o.peak,
@@ -359,7 +368,7 @@ fn strategies(quick: bool) {
         );
         let _ = writeln!(
             csv,
-            "{strategy},{label},{:.6e},{:.5},{},{fresh},{reuse},{broken},{:.2}",
+            "{strategy},{label},{:.6e},{:.5},{},{fresh},{reuse},{broken},{:.2},{curve}",
             o.peak,
             o.peak / reference - 1.0,
             o.solution.records.len(),
@@ -488,6 +497,60 @@ fn write_damage(name: &str, s: &QuasiStaticSolution) {
     write(&format!("damage_{name}.csv"), &t);
 }
 
+/// A 3D notched bar (bond-based): the peak load per unit depth against the
+/// LEFM load for ν = 1/4 in plane stress and plane strain (the bounds of a
+/// plate of finite depth; FEM, clamped grips).
+fn three_d(quick: bool) {
+    let json: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string("validation/fracture/fem/reference_sent.json").unwrap(),
+    )
+    .unwrap();
+    let at_half = |setting: &str| {
+        let case = &json["materials"][setting];
+        let a = case["a_over_W"].as_array().unwrap();
+        let k = a
+            .iter()
+            .position(|v| (v.as_f64().unwrap() - 0.5).abs() < 1e-12)
+            .unwrap();
+        // P_c = P(Δ = 1) sqrt(G_c / G(Δ = 1)).
+        case["P_per_unit_delta"][k].as_f64().unwrap()
+            * (FRACTURE_ENERGY / case["G_J"][k].as_f64().unwrap()).sqrt()
+    };
+    let (stress, strain) = (
+        at_half("plane_stress_nu_1/4"),
+        at_half("plane_strain_nu_1/4"),
+    );
+    println!("LEFM, ν = 1/4: plane stress {stress:.4e} N/m, plane strain {strain:.4e} N/m");
+    let mut csv = String::from(
+        "cells,depth,points,peak_per_depth,lefm_plane_stress,lefm_plane_strain,seconds\n",
+    );
+    let grid: &[(usize, f64)] = if quick {
+        &[(20, 0.02)]
+    } else {
+        &[(20, 0.02), (20, 0.04), (30, 0.03)]
+    };
+    for &(cells, depth) in grid {
+        let mut case = Sent::new("bond_based", cells, 3.015);
+        case.depth = Some(depth);
+        case.stop_after_peak = Some(0.7);
+        let o = run(&case);
+        let per_depth = o.peak / depth;
+        println!(
+            "3D W/Δx = {cells}, depth {depth} m: {} points, peak {per_depth:.4e} N/m ({:+.1} % plane stress, {:+.1} % plane strain), {:.1} s",
+            o.points,
+            100.0 * (per_depth / stress - 1.0),
+            100.0 * (per_depth / strain - 1.0),
+            o.seconds
+        );
+        let _ = writeln!(
+            csv,
+            "{cells},{depth},{},{per_depth:.6e},{stress:.6e},{strain:.6e},{:.2}",
+            o.points, o.seconds
+        );
+    }
+    write("three_d.csv", &csv);
+}
+
 /// The scene files of every case the report shows.
 fn scenes() {
     let dir = Path::new("validation/fracture/scenes");
@@ -521,6 +584,9 @@ fn scenes() {
         case.stepping = stepping.into();
         cases.push(case);
     }
+    let mut bar = Sent::new("bond_based", 20, 3.015);
+    bar.depth = Some(0.02);
+    cases.push(bar);
     let mut shear = Sent::new("shear", 40, 3.015);
     shear.loading = Loading::Shear;
     shear.max_load_factor = 10.0;
@@ -548,6 +614,7 @@ fn main() {
         Some("band") => band(quick),
         Some("strategies") => strategies(quick),
         Some("kink") => kink(quick),
+        Some("3d") => three_d(quick),
         Some("scenes") => scenes(),
         _ => eprintln!("usage: fracture_study lefm|energy|band|strategies|kink|scenes [bond_based|shear] [quick]"),
     }

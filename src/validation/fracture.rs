@@ -64,6 +64,9 @@ pub struct Sent {
     pub output_every: Option<usize>,
     /// `quasi_static.max_load_factor` (the grip moves `GRIP_DISPLACEMENT` at 1).
     pub max_load_factor: f64,
+    /// 3D: the plate's depth along `z` (the notch runs through it); `None`:
+    /// plane stress per unit thickness.
+    pub depth: Option<f64>,
     /// Instead of the edge notch, a centre crack through `(W/2, 0)` at 45° to
     /// `x`, half-length [`INCLINED_HALF_LENGTH`] (mixed mode under tension).
     pub inclined: bool,
@@ -93,6 +96,7 @@ impl Sent {
             stop_after_peak: None,
             output_every: None,
             max_load_factor: 1.0,
+            depth: None,
             inclined: false,
         }
     }
@@ -128,6 +132,9 @@ impl Sent {
         if self.inclined {
             name.push_str("_inclined");
         }
+        if self.depth.is_some() {
+            name.push_str("_3d");
+        }
         name
     }
 
@@ -138,12 +145,24 @@ impl Sent {
         // Grip bands: whole coarse spacings, at least a horizon deep.
         let grip = self.horizon_factor.ceil() * coarse;
         let (top, bottom) = (0.5 * LENGTH + grip, -0.5 * LENGTH - grip);
+        // A box over the whole width (and depth, in 3D) between y0 and y1.
+        let slab = |y0: f64, y1: f64| match self.depth {
+            None => format!("{{ min = [0.0, {y0:e}], max = [{WIDTH}, {y1:e}] }}"),
+            Some(z) => format!("{{ min = [0.0, {y0:e}, 0.0], max = [{WIDTH}, {y1:e}, {z:e}] }}"),
+        };
+        let (dimension, setting) = match self.depth {
+            None => (
+                "plane_stress",
+                String::from("plane stress, per unit thickness"),
+            ),
+            Some(z) => ("3d", format!("3D, depth {z} m")),
+        };
         let mut t = String::new();
         let _ = writeln!(
             t,
             "# SENT plate (validation/fracture): W = {WIDTH} m, free length L = {LENGTH} m between \
-             clamped grips,\n# edge notch a = {NOTCH} m along y = 0; spacing W/{}, m = {}.\n\
-             name = \"{}\"\n\n[model]\ndimension = \"plane_stress\"\nkind = \"{}\"\n\
+             clamped grips,\n# edge notch a = {NOTCH} m along y = 0; {setting}; spacing W/{}, m = {}.\n\
+             name = \"{}\"\n\n[model]\ndimension = \"{dimension}\"\nkind = \"{}\"\n\
              horizons = \"{}\"\n\n[discretization]\nhorizon_factor = {}\n\n\
              [materials.plate]\nyoungs_modulus = {YOUNGS_MODULUS:e}\n{}fracture_energy = {FRACTURE_ENERGY}\n",
             self.cells,
@@ -161,8 +180,8 @@ impl Sent {
         let region = |t: &mut String, spacing: f64, y0: f64, y1: f64| {
             let _ = writeln!(
                 t,
-                "[[regions]]\nmaterial = \"plate\"\nspacing = {spacing:e}\n\
-                 box = {{ min = [0.0, {y0:e}], max = [{WIDTH}, {y1:e}] }}\n"
+                "[[regions]]\nmaterial = \"plate\"\nspacing = {spacing:e}\nbox = {}\n",
+                slab(y0, y1)
             );
         };
         match self.fine_band {
@@ -179,28 +198,36 @@ impl Sent {
         };
         let guard = 0.5 * LENGTH - 0.1 * WIDTH;
         let [upper, lower] = inclined_tips();
-        let (from, to) = if self.inclined {
-            ([lower[0], lower[1]], [upper[0], upper[1]])
+        let crack = match (self.depth, self.inclined) {
+            (Some(z), _) => format!(
+                "origin = [0.0, 0.0, 0.0]\nedge1 = [{NOTCH}, 0.0, 0.0]\nedge2 = [0.0, 0.0, {z:e}]"
+            ),
+            (None, true) => format!(
+                "from = [{:e}, {:e}]\nto = [{:e}, {:e}]",
+                lower[0], lower[1], upper[0], upper[1]
+            ),
+            (None, false) => format!("from = [0.0, 0.0]\nto = [{NOTCH}, 0.0]"),
+        };
+        let held = if self.depth.is_some() {
+            "x = 0.0, y = 0.0, z = 0.0"
         } else {
-            ([0.0, 0.0], [NOTCH, 0.0])
+            "x = 0.0, y = 0.0"
+        };
+        let pulled = match self.depth {
+            None => format!("x = {gx:e}, y = {gy:e}"),
+            Some(_) => format!("x = {gx:e}, y = {gy:e}, z = 0.0"),
         };
         let _ = writeln!(
             t,
-            "[[cracks]]\nfrom = [{:e}, {:e}]\nto = [{:e}, {:e}]\n\n\
-             [[boundary]]\nname = \"bottom\"\nbox = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }}\n\
-             displacement = {{ x = 0.0, y = 0.0 }}\n\n\
-             [[boundary]]\nname = \"top\"\nbox = {{ min = [0.0, {:e}], max = [{WIDTH}, {top:e}] }}\n\
-             displacement = {{ x = {gx:e}, y = {gy:e} }}\n\n\
-             [fracture]\nno_fail = [\n  {{ box = {{ min = [0.0, {bottom:e}], max = [{WIDTH}, {:e}] }} }},\n  \
-             {{ box = {{ min = [0.0, {guard:e}], max = [{WIDTH}, {top:e}] }} }},\n]\n\n\
+            "[[cracks]]\n{crack}\n\n\
+             [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ {held} }}\n\n\
+             [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ {pulled} }}\n\n\
+             [fracture]\nno_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
              [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = {}",
-            from[0],
-            from[1],
-            to[0],
-            to[1],
-            -0.5 * LENGTH,
-            0.5 * LENGTH,
-            -guard,
+            slab(bottom, -0.5 * LENGTH),
+            slab(0.5 * LENGTH, top),
+            slab(bottom, -guard),
+            slab(guard, top),
             self.strategy,
             self.max_load_factor
         );
