@@ -101,9 +101,9 @@ def plot_damage():
     maps = [(n, t) for n, t in (
         ("damage_sent_bond_based_event_n80_m3_band12.csv", "mode I, DH-PD fine band"),
         ("damage_sent_bond_based_event_n40_m3_shear_loading.csv", "shear grip, bond-based"),
-        ("damage_sent_shear_event_n60_m3_shear_loading.csv", "shear grip, shear model"),
+        ("damage_sent_shear_event_n40_m3_shear_loading.csv", "shear grip, shear model"),
         ("damage_sent_bond_based_event_n60_m3_inclined.csv", "inclined crack, bond-based"),
-        ("damage_sent_shear_event_n60_m3_inclined.csv", "inclined crack, shear model"),
+        ("damage_sent_shear_event_n40_m3_inclined.csv", "inclined crack, shear model"),
     ) if os.path.exists(os.path.join(RESULTS, n))]
     if not maps:
         return
