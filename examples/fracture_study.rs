@@ -603,11 +603,20 @@ fn scenes() {
     let mut bar = Sent::new("bond_based", 20, 3.015);
     bar.depth = Some(0.02);
     cases.push(bar);
-    let mut shear = Sent::new("shear", 40, 3.015);
-    shear.loading = Loading::Shear;
-    shear.max_load_factor = 10.0;
-    shear.output_every = Some(20);
-    cases.push(shear);
+    for (model, cells) in [("shear", 40), ("bond_based", 40)] {
+        let mut case = Sent::new(model, cells, 3.015);
+        case.loading = Loading::Shear;
+        case.max_load_factor = 10.0;
+        case.output_every = Some(20);
+        cases.push(case);
+    }
+    for (model, cells) in [("shear", 40), ("bond_based", 60)] {
+        let mut case = Sent::new(model, cells, 3.015);
+        case.inclined = true;
+        case.max_load_factor = 10.0;
+        case.output_every = Some(20);
+        cases.push(case);
+    }
     for case in cases {
         let path = dir.join(format!("{}.toml", case.name()));
         std::fs::write(&path, case.toml()).unwrap();

@@ -13,9 +13,14 @@
 //! scene file ─► scene::Scene (typed, validated)
 //!            ─► discretization::Discretization (points, bonds)
 //!            ─► model (bond kernels: force and tangent)
-//!            ─► assembly (pattern once, values in parallel) ─► solve (faer)
-//!            ─► drivers::static_solve ─► output (VTU, CSV, JSON, Matrix Market)
+//!            ─► assembly (pattern once, values in parallel) ─► solve::pipeline (faer)
+//!            ─► drivers::static_solve | drivers::quasi_static (+ damage)
+//!            ─► output (VTU and .pvd series, CSV, JSON, Matrix Market)
 //! ```
+//!
+//! A scene with a `[quasi_static]` section and a fracture parameter per
+//! material runs [`drivers::quasi_static::run`]: the prescribed displacements
+//! are scaled by a load factor and bonds break by the criteria of [`damage`].
 //!
 //! ```
 //! let scene = dhpd::scene::parse_spec(r#"
