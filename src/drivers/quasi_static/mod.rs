@@ -1,0 +1,422 @@
+//! The quasi-static driver: fracture under prescribed displacement by
+//! sequentially linear analysis (formulation Sec. 5).
+//!
+//! Every prescribed displacement and load of the scene is scaled by a load
+//! factor `λ`. With the bond set `D` frozen, the linearised problem is linear
+//! in `λ`:
+//!
+//! ```text
+//! K(D) x = λ b(D),   so   x(λ) = λ x₁,   u(λ) = λ u₁,   R(λ) = λ R₁
+//! ```
+//!
+//! (`x₁`, `u₁`, `R₁`: free unknowns, displacements and reactions at `λ = 1`). A
+//! bond's ratio `r_b = value / critical value` (stretch or deviatoric strain,
+//! [`crate::damage`]) is positively homogeneous of degree one in `u`, so
+//! `r_b(λ) = λ r_b(1)`. Strategies (`quasi_static.strategy`):
+//!
+//! - `event`: the next bond reaches its critical value at exactly
+//!   `λ* = 1 / max_b r_b(1)`. Record the state there (`critical`), break that
+//!   bond (with any tied within `tolerance`), re-solve, record again at the same
+//!   `λ*` (`broken`): the exact saw-tooth load-displacement curve of the
+//!   discrete model, snap-back included (`λ*` may fall), with no step size.
+//! - `all`: at each load step `λ_n`, break every bond with `r_b(λ_n) ≥ 1`,
+//!   re-solve at the same `λ_n`, until none breaks (`max_resolves`).
+//! - `most_critical`: as `all`, but break only the bonds within `tolerance` of
+//!   the largest ratio each time.
+//!
+//! Stepped strategies take uniform steps of `max_load_factor / steps`; with
+//! `max_broken_per_step`, a step at which more bonds are over their critical
+//! value before any re-solve is halved (down to `min_step_fraction` of the
+//! uniform step), and the step doubles back after an accepted one.
+//!
+//! **What breaking does to the system** (each logged):
+//! - shear-model owners whose intact bonds stop spanning the space lose their
+//!   remaining bonds (formulation Sec. 4) — [`Model::refresh_owners`];
+//! - bond-based points whose intact bonds (owned or not) stop spanning the
+//!   space are mechanisms: their remaining bonds break; a point the
+//!   factorisation finds singular is released the same way;
+//! - points left without any intact bond, and pieces that break free of every
+//!   support, are held where they are (their unknowns are pinned, their
+//!   displacement stays the one they had when they broke free); a free piece
+//!   that carries an applied load ends the run (the body has failed);
+//! - complete separation (every reaction below `1e-6` of its peak) ends the
+//!   run, reporting the step.
+
+use super::static_solve::{reactions, right_hand_side, Prepared, Reaction, Timings};
+use crate::assembly::dofs::DofMap;
+use crate::assembly::loads::AppliedLoad;
+use crate::assembly::rigid_modes;
+use crate::assembly::stiffness::{self, Stiffness};
+use crate::damage::{self, Criterion};
+use crate::discretization::Discretization;
+use crate::error::{Error, NumericalError};
+use crate::model::bond_based::BondBased;
+use crate::model::shear::Shear;
+use crate::model::{Coupling, Model};
+use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
+use crate::solve::low_rank::Term;
+use crate::solve::pipeline::{Pipeline, SolveReport, Solved, SolverSettings};
+use serde::Serialize;
+use std::time::Instant;
+
+mod breakage;
+mod strategies;
+mod system;
+
+/// Reaction magnitude, relative to its peak, below which the body counts as separated.
+const SEPARATED: f64 = 1e-6;
+
+/// Largest number of points released as mechanisms in a row before giving up.
+const MAX_RELEASES: usize = 10_000;
+
+/// Which state a record describes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StateKind {
+    /// The unloaded start.
+    Initial,
+    /// Converged at a load step: no bond over its critical value.
+    Equilibrium,
+    /// `event`: the old bond set at the load factor where the next bond reaches
+    /// its critical value.
+    Critical,
+    /// `event`: the same load factor after breaking and re-solving.
+    Broken,
+}
+
+/// One row of `load_displacement.csv`.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepRecord {
+    /// Step (load step or event) number, from 0.
+    pub step: usize,
+    /// Which state.
+    pub state: StateKind,
+    /// Load factor λ.
+    pub load_factor: f64,
+    /// λ times the scene's largest prescribed displacement component.
+    pub displacement: f64,
+    /// Reaction of each constrained set (N).
+    pub reactions: Vec<[f64; 3]>,
+    /// Bonds broken in this step (including those its consequences broke).
+    pub broken_in_step: usize,
+    /// Bonds broken so far.
+    pub broken_total: usize,
+    /// Re-solves in this step.
+    pub resolves: usize,
+    /// Routes of the step's solves: `factor`, `reuse`, both, or `-` (none).
+    pub route: String,
+    /// Krylov iterations of the step's solves.
+    pub iterations: usize,
+    /// Largest relative residual of the step's solves (0 without a solve).
+    pub residual: f64,
+    /// Wall time since the start of the run (s).
+    pub wall_time: f64,
+}
+
+/// One solve of the run, for `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ResolveRecord {
+    /// Step it belongs to.
+    pub step: usize,
+    /// Bonds broken since the previous solve.
+    pub bonds_broken: usize,
+    /// What the solve did.
+    #[serde(flatten)]
+    pub report: SolveReport,
+}
+
+/// How the run ended.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case", tag = "kind", content = "detail")]
+pub enum Outcome {
+    /// The maximal load factor was reached.
+    Completed,
+    /// No intact bond is loaded toward its critical value (event strategy).
+    NothingToBreak,
+    /// Every reaction fell below 1e-6 of its peak: the body separated.
+    Separated {
+        /// The step at which it happened.
+        step: usize,
+    },
+    /// A piece carrying an applied load broke free of every support.
+    Failed {
+        /// The step at which it happened.
+        step: usize,
+        /// What broke free.
+        reason: String,
+    },
+    /// The event cap (`max_events`) was reached.
+    EventCap,
+    /// Every reaction fell below `stop_after_peak` of its peak.
+    PastPeak {
+        /// The step at which it happened.
+        step: usize,
+    },
+}
+
+impl Outcome {
+    /// A sentence for the terminal.
+    pub fn describe(&self) -> String {
+        match self {
+            Outcome::Completed => "reached the maximal load factor".into(),
+            Outcome::NothingToBreak => "no intact bond is loaded toward its critical value".into(),
+            Outcome::Separated { step } => format!("complete separation at step {step}"),
+            Outcome::Failed { step, reason } => format!("failure at step {step}: {reason}"),
+            Outcome::EventCap => "stopped at quasi_static.max_events".into(),
+            Outcome::PastPeak { step } => format!(
+                "stopped at step {step}: every reaction below quasi_static.stop_after_peak of its peak"
+            ),
+        }
+    }
+}
+
+/// A state handed to observers when the scene asks for a snapshot.
+pub struct Snapshot<'a> {
+    /// Step number.
+    pub step: usize,
+    /// Load factor.
+    pub load_factor: f64,
+    /// Points and bonds (with the current intact flags).
+    pub disc: &'a Discretization,
+    /// Displacements.
+    pub u: &'a [[f64; 3]],
+    /// Damage per point.
+    pub damage: &'a [f64],
+}
+
+/// Watches a run: every record, with a snapshot at the steps the scene's output asks for.
+pub trait Observer {
+    /// Called for every record, in order.
+    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error>;
+}
+
+/// Everything a quasi-static run produces.
+pub struct QuasiStaticSolution {
+    /// Points and bonds, with the final intact flags.
+    pub disc: Discretization,
+    /// Degrees of freedom.
+    pub dofs: DofMap,
+    /// Final displacement.
+    pub u: Vec<[f64; 3]>,
+    /// Final damage per point.
+    pub damage: Vec<f64>,
+    /// Final load factor.
+    pub load_factor: f64,
+    /// The scene's largest prescribed displacement component (the `displacement` column is λ times it).
+    pub reference_displacement: f64,
+    /// Names of the constrained sets (reaction columns).
+    pub set_names: Vec<String>,
+    /// Every record.
+    pub records: Vec<StepRecord>,
+    /// Every solve.
+    pub solves: Vec<ResolveRecord>,
+    /// What breaking did to the system (held points, released mechanisms, free pieces).
+    pub log: Vec<String>,
+    /// How the run ended.
+    pub outcome: Outcome,
+    /// Setup time per phase.
+    pub timings: Timings,
+    /// Applied loads at λ = 1.
+    pub loads: Vec<AppliedLoad>,
+    /// Bonds in all.
+    pub bonds: usize,
+    /// Free unknowns.
+    pub dofs_free: usize,
+    /// Stored entries of `K`.
+    pub nnz_k: usize,
+    /// Stored entries of the factor.
+    pub nnz_l: Option<usize>,
+    /// Reaction of each constrained set in the final state.
+    pub final_reactions: Vec<Reaction>,
+}
+
+/// Runs the quasi-static fracture analysis of `scene`.
+pub fn run(
+    scene: &Scene,
+    prepared: Prepared,
+    observer: &mut dyn Observer,
+) -> Result<QuasiStaticSolution, Error> {
+    match scene.model {
+        ModelKind::BondBased => {
+            let model = BondBased::new(
+                &prepared.disc,
+                scene.dimension,
+                &scene.materials,
+                scene.thickness,
+            );
+            run_with(model, scene, prepared, observer)
+        }
+        ModelKind::Shear => {
+            let model = Shear::new(
+                &prepared.disc,
+                scene.dimension,
+                &scene.materials,
+                scene.gradient_dilatation,
+            )?;
+            run_with(model, scene, prepared, observer)
+        }
+    }
+}
+
+/// The state of a run between solves.
+struct Run<'s, M: Model> {
+    scene: &'s Scene,
+    settings: &'s QuasiStatic,
+    model: M,
+    disc: Discretization,
+    dofs: DofMap,
+    f_ext: Vec<[f64; 3]>,
+    criterion: Criterion,
+    pipeline: Pipeline,
+    stiffness: Stiffness,
+    /// Free unknowns at λ = 1 for the current bonds.
+    x: Vec<f64>,
+    /// Reactions at λ = 1 for the current bonds.
+    unit_reactions: Vec<Reaction>,
+    /// Held points: the displacement each keeps.
+    held: Vec<Option<[f64; 3]>>,
+    /// Diagonal given to held unknowns.
+    pin_diagonal: f64,
+    ratios: Vec<f64>,
+    broken_total: usize,
+    /// Bonds broken since the last solve.
+    pending: usize,
+    /// Points whose bonds broke since the last [`Run::consequences`].
+    touched: Vec<usize>,
+    /// Bonds broken since the last assembly.
+    recent: Vec<usize>,
+    /// Points held since the last assembly.
+    newly_held: Vec<usize>,
+    /// Right-hand side at λ = 1 (before pinning).
+    rhs: Vec<f64>,
+    peak_reaction: f64,
+    reference_displacement: f64,
+    solves: Vec<ResolveRecord>,
+    log: Vec<String>,
+    start: Instant,
+}
+
+fn run_with<M: Model>(
+    model: M,
+    scene: &Scene,
+    prepared: Prepared,
+    observer: &mut dyn Observer,
+) -> Result<QuasiStaticSolution, Error> {
+    let settings = scene.quasi_static.as_ref().expect("a quasi-static scene");
+    let start = Instant::now();
+    let Prepared {
+        disc,
+        dofs,
+        f_ext,
+        loads,
+        mut timings,
+    } = prepared;
+    let surrogate = (model.coupling() == Coupling::Family)
+        .then(|| BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness));
+    let pipeline = Pipeline::analyse(
+        &disc,
+        &dofs,
+        model.coupling(),
+        SolverSettings::of(scene),
+        surrogate,
+    )?;
+    timings.pattern = pipeline.pattern_seconds;
+    timings.symbolic_factorization = pipeline.symbolic_seconds;
+    let t = Instant::now();
+    let stiffness = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
+    let diagonal = mean_diagonal(&stiffness, pipeline.pattern());
+    let criterion = Criterion::new(scene, &disc);
+    timings.assembly = t.elapsed().as_secs_f64();
+    let reference_displacement = scene
+        .boundaries
+        .iter()
+        .flat_map(|b| b.values.iter().flatten().copied())
+        .fold(0.0, |m: f64, v| if v.abs() > m.abs() { v } else { m });
+    let n_bonds = disc.bonds.len();
+    let n_points = disc.points.len();
+    let mut run = Run {
+        scene,
+        settings,
+        model,
+        disc,
+        dofs,
+        f_ext,
+        criterion,
+        pipeline,
+        stiffness,
+        x: Vec::new(),
+        unit_reactions: Vec::new(),
+        held: vec![None; n_points],
+        pin_diagonal: diagonal,
+        ratios: vec![0.0; n_bonds],
+        broken_total: 0,
+        pending: 0,
+        touched: Vec::new(),
+        recent: Vec::new(),
+        newly_held: Vec::new(),
+        rhs: Vec::new(),
+        peak_reaction: 0.0,
+        reference_displacement,
+        solves: Vec::new(),
+        log: Vec::new(),
+        start,
+    };
+    run.solve(0, true)?;
+    timings.numeric_factorization = run.solves[0].report.factor_seconds;
+    timings.solve = run.solves[0].report.solve_seconds;
+    let initial = run.record(0, StateKind::Initial, 0.0, 0, &[]);
+    run.observe(observer, &initial)?;
+    let mut records = vec![initial];
+    let (outcome, load_factor) = match settings.strategy {
+        Strategy::Event => run.events(observer, &mut records)?,
+        Strategy::All | Strategy::MostCritical => run.stepped(observer, &mut records)?,
+    };
+    let u = run.displacement(load_factor);
+    let damage = damage::damage(&run.disc);
+    let final_reactions = run
+        .unit_reactions
+        .iter()
+        .map(|r| Reaction {
+            force: r.force.map(|f| load_factor * f),
+            ..r.clone()
+        })
+        .collect();
+    let nnz_l = run.pipeline.nnz_factor();
+    Ok(QuasiStaticSolution {
+        set_names: run.dofs.sets.iter().map(|s| s.name.clone()).collect(),
+        nnz_k: run.pipeline.pattern().nnz(),
+        dofs_free: run.dofs.n_free(),
+        bonds: n_bonds,
+        disc: run.disc,
+        dofs: run.dofs,
+        u,
+        damage,
+        load_factor,
+        reference_displacement,
+        records,
+        solves: run.solves,
+        log: run.log,
+        outcome,
+        timings,
+        loads,
+        nnz_l,
+        final_reactions,
+    })
+}
+
+/// Mean diagonal entry of `K` (the stiffness scale given to held unknowns).
+fn mean_diagonal(k: &Stiffness, pattern: &crate::assembly::pattern::Pattern) -> f64 {
+    let mut sum = 0.0;
+    for col in 0..k.n {
+        for idx in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+            if pattern.row_idx[idx] == col {
+                sum += k.values[idx].abs();
+            }
+        }
+    }
+    if sum > 0.0 && k.n > 0 {
+        sum / k.n as f64
+    } else {
+        1.0
+    }
+}

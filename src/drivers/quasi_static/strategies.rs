@@ -1,0 +1,243 @@
+//! The strategies of the quasi-static driver (module docs of [`super`]): the
+//! event loop, the stepped loop, the ratios of every bond at a load factor, the
+//! records and the end of a run.
+
+use super::*;
+
+impl<M: Model> Run<'_, M> {
+    /// The event strategy (module docs). Returns the outcome and the final load factor.
+    pub(super) fn events(
+        &mut self,
+        observer: &mut dyn Observer,
+        records: &mut Vec<StepRecord>,
+    ) -> Result<(Outcome, f64), Error> {
+        let mut load_factor = 0.0;
+        for event in 1..=self.settings.max_events {
+            self.update_ratios(1.0);
+            let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
+            let critical = if largest > 0.0 {
+                1.0 / largest
+            } else {
+                f64::INFINITY
+            };
+            if critical > self.settings.max_load_factor {
+                let max = self.settings.max_load_factor;
+                let record = self.record(event, StateKind::Equilibrium, max, 0, &[]);
+                self.observe(observer, &record)?;
+                records.push(record);
+                let outcome = if largest > 0.0 {
+                    Outcome::Completed
+                } else {
+                    Outcome::NothingToBreak
+                };
+                return Ok((outcome, max));
+            }
+            load_factor = critical;
+            let before = self.record(event, StateKind::Critical, load_factor, 0, &[]);
+            self.observe(observer, &before)?;
+            records.push(before);
+            let threshold = (1.0 - self.settings.tolerance) * largest;
+            let chosen: Vec<usize> = (0..self.ratios.len())
+                .filter(|&b| self.ratios[b] > 0.0 && self.ratios[b] >= threshold)
+                .collect();
+            let (broken_before, first_solve) = (self.broken_total, self.solves.len());
+            self.break_bonds(&chosen);
+            let ended = self.settle(event, load_factor)?;
+            let solves = self.solves[first_solve..].to_vec();
+            let broken = self.broken_total - broken_before;
+            let record = self.record(event, StateKind::Broken, load_factor, broken, &solves);
+            self.observe(observer, &record)?;
+            records.push(record);
+            if let Some(outcome) = ended {
+                return Ok((outcome, load_factor));
+            }
+            if let Some(outcome) = self.ended(event, load_factor) {
+                return Ok((outcome, load_factor));
+            }
+        }
+        Ok((Outcome::EventCap, load_factor))
+    }
+
+    /// The `all` and `most_critical` strategies (module docs).
+    pub(super) fn stepped(
+        &mut self,
+        observer: &mut dyn Observer,
+        records: &mut Vec<StepRecord>,
+    ) -> Result<(Outcome, f64), Error> {
+        let max = self.settings.max_load_factor;
+        let uniform = max / self.settings.steps as f64;
+        let smallest = uniform * self.settings.min_step_fraction;
+        let mut step_size = uniform;
+        let mut load_factor = 0.0;
+        let mut step = 0;
+        while load_factor < max * (1.0 - 1e-12) {
+            let target = (load_factor + step_size).min(max);
+            if let Some(limit) = self.settings.max_broken_per_step {
+                self.update_ratios(target);
+                let over = self.ratios.iter().filter(|&&r| r >= 1.0).count();
+                if over > limit && step_size > smallest {
+                    step_size = (0.5 * step_size).max(smallest);
+                    continue;
+                }
+            }
+            step += 1;
+            load_factor = target;
+            let first_solve = self.solves.len();
+            let broken_before = self.broken_total;
+            let mut resolves = 0;
+            let mut outcome = None;
+            loop {
+                self.update_ratios(load_factor);
+                let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
+                if largest < 1.0 {
+                    break;
+                }
+                if resolves == self.settings.max_resolves {
+                    self.log.push(format!(
+                        "step {step}: stopped re-solving after quasi_static.max_resolves = {} \
+                         re-solves with bonds still over their critical value",
+                        self.settings.max_resolves
+                    ));
+                    break;
+                }
+                let threshold = match self.settings.strategy {
+                    Strategy::MostCritical => (1.0 - self.settings.tolerance) * largest,
+                    _ => 1.0,
+                };
+                let chosen: Vec<usize> = (0..self.ratios.len())
+                    .filter(|&b| self.ratios[b] >= threshold.max(1.0))
+                    .collect();
+                self.break_bonds(&chosen);
+                resolves += 1;
+                outcome = self.settle(step, load_factor)?;
+                if outcome.is_some() || self.separated() {
+                    break;
+                }
+            }
+            let solves = self.solves[first_solve..].to_vec();
+            let record = self.record(
+                step,
+                StateKind::Equilibrium,
+                load_factor,
+                self.broken_total - broken_before,
+                &solves,
+            );
+            self.observe(observer, &record)?;
+            records.push(record);
+            if let Some(outcome) = outcome {
+                return Ok((outcome, load_factor));
+            }
+            if let Some(outcome) = self.ended(step, load_factor) {
+                return Ok((outcome, load_factor));
+            }
+            step_size = (2.0 * step_size).min(uniform);
+        }
+        Ok((Outcome::Completed, load_factor))
+    }
+
+    /// The ratio of every bond at `load_factor` for the current bonds.
+    pub(super) fn update_ratios(&mut self, load_factor: f64) {
+        let u = self.unit_displacement();
+        self.criterion
+            .ratios(&self.model, &self.disc, &u, true, &mut self.ratios);
+        if load_factor != 1.0 {
+            self.ratios.iter_mut().for_each(|r| *r *= load_factor);
+        }
+    }
+
+    /// A record of the current bonds at `load_factor`; updates the peak reaction.
+    pub(super) fn record(
+        &mut self,
+        step: usize,
+        state: StateKind,
+        load_factor: f64,
+        broken_in_step: usize,
+        solves: &[ResolveRecord],
+    ) -> StepRecord {
+        let reactions: Vec<[f64; 3]> = self
+            .unit_reactions
+            .iter()
+            .map(|r| r.force.map(|f| load_factor * f))
+            .collect();
+        for r in &reactions {
+            self.peak_reaction = self.peak_reaction.max(crate::geometry::norm(r));
+        }
+        let has = |route| solves.iter().any(|s| s.report.route == route);
+        use crate::solve::pipeline::Route;
+        let route = match (has(Route::Factor), has(Route::Reuse)) {
+            (true, true) => "factor+reuse",
+            (true, false) => "factor",
+            (false, true) => "reuse",
+            (false, false) => "-",
+        };
+        StepRecord {
+            step,
+            state,
+            load_factor,
+            displacement: load_factor * self.reference_displacement,
+            reactions,
+            broken_in_step,
+            broken_total: self.broken_total,
+            resolves: solves.len(),
+            route: route.into(),
+            iterations: solves.iter().map(|s| s.report.iterations).sum(),
+            residual: solves.iter().map(|s| s.report.residual).fold(0.0, f64::max),
+            wall_time: self.start.elapsed().as_secs_f64(),
+        }
+    }
+
+    /// Hands a record to the observer, with a snapshot when the scene asks for one.
+    pub(super) fn observe(
+        &self,
+        observer: &mut dyn Observer,
+        record: &StepRecord,
+    ) -> Result<(), Error> {
+        let output = &self.scene.output;
+        let due = output.every.is_some_and(|n| record.step % n == 0)
+            || output.steps.contains(&record.step);
+        // For an event, the snapshot shows the state after the break.
+        let due = due && record.state != StateKind::Critical;
+        if !due {
+            return observer.record(record, None);
+        }
+        let u = self.displacement(record.load_factor);
+        let damage = damage::damage(&self.disc);
+        observer.record(
+            record,
+            Some(&Snapshot {
+                step: record.step,
+                load_factor: record.load_factor,
+                disc: &self.disc,
+                u: &u,
+                damage: &damage,
+            }),
+        )
+    }
+
+    /// Whether the run ends after this state: separated, or past the peak as
+    /// `stop_after_peak` asks (`load_factor`: that of the state just recorded).
+    pub(super) fn ended(&self, step: usize, load_factor: f64) -> Option<Outcome> {
+        if self.separated() {
+            return Some(Outcome::Separated { step });
+        }
+        let fraction = self.settings.stop_after_peak?;
+        let largest = self
+            .unit_reactions
+            .iter()
+            .map(|r| load_factor * crate::geometry::norm(&r.force))
+            .fold(0.0, f64::max);
+        (self.peak_reaction > 0.0 && largest < fraction * self.peak_reaction)
+            .then_some(Outcome::PastPeak { step })
+    }
+
+    /// Whether every reaction has fallen below [`SEPARATED`] of its peak.
+    pub(super) fn separated(&self) -> bool {
+        let largest = self
+            .unit_reactions
+            .iter()
+            .map(|r| crate::geometry::norm(&r.force))
+            .fold(0.0, f64::max);
+        self.peak_reaction > 0.0
+            && largest * self.settings.max_load_factor <= SEPARATED * self.peak_reaction
+    }
+}
