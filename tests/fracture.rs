@@ -450,3 +450,29 @@ fn a_fracture_run_writes_its_series_and_records() {
     assert!(summary["peaks"][1]["magnitude"].as_f64().unwrap() > 0.0);
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The shear model's rule (001 Eq. 37) breaks a bond only if one of its ends
+/// is in tension (θ ≥ 0): a block squeezed between its grips keeps every bond
+/// however small the critical deviatoric strain, and the same block pulled
+/// breaks.
+#[test]
+fn the_shear_rule_breaks_nothing_in_compression() {
+    let block = |pull: f64| {
+        format!(
+            "[model]\ndimension = \"plane_stress\"\nkind = \"shear\"\n\
+             [materials.rock]\nyoungs_modulus = 1.0e10\npoisson_ratio = 0.25\n\
+             critical_deviatoric_strain = 1.0e-7\n\
+             [[regions]]\nmaterial = \"rock\"\nspacing = 0.01\nbox = {{ min = [0.0, 0.0], max = [0.1, 0.14] }}\n\
+             [[boundary]]\nname = \"bottom\"\nbox = {{ min = [0.0, 0.0], max = [0.1, 0.02] }}\n\
+             displacement = {{ x = 0.0, y = 0.0 }}\n\
+             [[boundary]]\nname = \"top\"\nbox = {{ min = [0.0, 0.12], max = [0.1, 0.14] }}\n\
+             displacement = {{ x = 0.0, y = {pull:e} }}\n\
+             [quasi_static]\nmax_load_factor = 1.0\n"
+        )
+    };
+    let (squeezed, _) = run(&scene(&block(-1e-4)));
+    assert_eq!(squeezed.records.last().unwrap().broken_total, 0);
+    assert_eq!(squeezed.outcome, Outcome::NothingToBreak);
+    let (pulled, _) = run(&scene(&block(1e-4)));
+    assert!(pulled.records.last().unwrap().broken_total > 0);
+}
