@@ -288,6 +288,9 @@ fn band(quick: bool) {
         case.stop_after_peak = Some(0.5);
         let o = run(&case);
         let deviation = crack_deviation(&o.solution, NOTCH, 0.0);
+        if case.fine_band.is_some() && case.horizons == "dual" {
+            write_damage(&case.name(), &o.solution);
+        }
         println!(
             "{label}: {} points, peak {:.4e} N/m ({:+.1} % vs LEFM), crack within {:.2e} m of y = 0, {:.1} s",
             o.points,

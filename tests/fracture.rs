@@ -476,3 +476,26 @@ fn the_shear_rule_breaks_nothing_in_compression() {
     let (pulled, _) = run(&scene(&block(1e-4)));
     assert!(pulled.records.last().unwrap().broken_total > 0);
 }
+
+/// A bar held at one end and pulled by a traction at the other: once it breaks
+/// through, the pulled piece carries an applied load and nothing holds it, so
+/// the run ends as a failure (cleanly, with the step), not with a singular
+/// matrix or a NaN.
+#[test]
+fn a_loaded_piece_breaking_free_ends_the_run_as_a_failure() {
+    let text = "[model]\ndimension = \"1d\"\n[materials.steel]\nyoungs_modulus = 2.0e11\n\
+                fracture_energy = 1.0e3\n\
+                [[regions]]\nmaterial = \"steel\"\nspacing = 0.01\nbox = { min = [0.0], max = [0.3] }\n\
+                [[boundary]]\nname = \"left\"\nbox = { min = [0.0], max = [0.03] }\ndisplacement = { x = 0.0 }\n\
+                [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1.0e9]\n\
+                [quasi_static]\nmax_load_factor = 10.0\n";
+    let (solution, _) = run(&scene(text));
+    match &solution.outcome {
+        Outcome::Failed { step, reason } => {
+            assert!(*step >= 1);
+            assert!(reason.contains("applied load"), "{reason}");
+        }
+        other => panic!("expected a failure, got {other:?}"),
+    }
+    assert!(solution.u.iter().flatten().all(|v| v.is_finite()));
+}

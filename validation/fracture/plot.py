@@ -112,8 +112,14 @@ def plot_damage():
     for ax, (name, title) in zip(axes, maps):
         data = rows(name)
         ax.scatter([float(r["x"]) for r in data], [float(r["y"]) for r in data],
-                   c=[float(r["damage"]) for r in data], s=2, cmap="inferno_r",
-                   vmin=0, vmax=0.6, rasterized=True)
+                   c=[float(r["damage"]) for r in data], s=2, cmap="Reds",
+                   vmin=0, vmax=0.5, rasterized=True)
+        # The pre-crack (its bonds were never there, so it shows no damage).
+        if "inclined" in name:
+            h = 0.015 / 2 ** 0.5
+            ax.plot([0.05 - h, 0.05 + h], [-h, h], "b-", lw=1)
+        else:
+            ax.plot([0.0, 0.05], [0.0, 0.0], "b-", lw=1)
         ax.set_aspect("equal")
         ax.set_ylim(-0.1, 0.1)
         ax.set_title(title, fontsize=8)

@@ -98,7 +98,14 @@ impl<M: Model> Run<'_, M> {
             }
             let u = self.displacement(load_factor);
             for &i in &touched {
-                if self.held[i].is_none() && self.dofs.free_count(i) > 0 && !self.has_bond(i) {
+                // A point that carries an applied load is not held: the free-piece
+                // check ends the run instead (the body has failed).
+                let loaded = self.f_ext[i].iter().any(|&f| f != 0.0);
+                if self.held[i].is_none()
+                    && self.dofs.free_count(i) > 0
+                    && !loaded
+                    && !self.has_bond(i)
+                {
                     self.held[i] = Some(u[i]);
                     self.newly_held.push(i);
                     self.log.push(format!(
