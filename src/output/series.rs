@@ -80,7 +80,7 @@ impl Progress {
         if !self.terminal || self.start.elapsed() < QUIET_FOR {
             return;
         }
-        let steps = self.steps;
+        let (steps, elapsed) = (self.steps, self.start.elapsed());
         let bar = self.bar.get_or_insert_with(|| {
             let (bar, template) = match steps {
                 Some(n) => (
@@ -95,7 +95,7 @@ impl Progress {
             if let Ok(style) = ProgressStyle::with_template(template) {
                 bar.set_style(style.progress_chars("=> "));
             }
-            bar
+            bar.with_elapsed(elapsed)
         });
         bar.set_position(record.step as u64);
         bar.set_message(format!(
