@@ -427,6 +427,11 @@ fn a_fracture_run_writes_its_series_and_records() {
         );
     }
     assert!(table.lines().count() > 100);
+    // Bond-based re-solves update the old factor.
+    assert!(
+        table.contains(",update,"),
+        "no low-rank update in the routes"
+    );
     assert!(read("points.csv")
         .lines()
         .next()

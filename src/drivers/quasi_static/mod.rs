@@ -103,7 +103,8 @@ pub struct StepRecord {
     pub broken_total: usize,
     /// Re-solves in this step.
     pub resolves: usize,
-    /// Routes of the step's solves: `factor`, `reuse`, both, or `-` (none).
+    /// Routes of the step's solves: `factor`, `update`, `reuse` (Krylov with the
+    /// old factor), joined by `+`, or `-` (no solve).
     pub route: String,
     /// Krylov iterations of the step's solves.
     pub iterations: usize,

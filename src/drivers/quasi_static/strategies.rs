@@ -162,13 +162,16 @@ impl<M: Model> Run<'_, M> {
         for r in &reactions {
             self.peak_reaction = self.peak_reaction.max(crate::geometry::norm(r));
         }
-        let has = |route| solves.iter().any(|s| s.report.route == route);
         use crate::solve::pipeline::Route;
-        let route = match (has(Route::Factor), has(Route::Reuse)) {
-            (true, true) => "factor+reuse",
-            (true, false) => "factor",
-            (false, true) => "reuse",
-            (false, false) => "-",
+        let routes: Vec<&str> = [Route::Factor, Route::Update, Route::Reuse]
+            .into_iter()
+            .filter(|&route| solves.iter().any(|s| s.report.route == route))
+            .map(Route::name)
+            .collect();
+        let route = if routes.is_empty() {
+            "-".to_string()
+        } else {
+            routes.join("+")
         };
         StepRecord {
             step,
@@ -179,7 +182,7 @@ impl<M: Model> Run<'_, M> {
             broken_in_step,
             broken_total: self.broken_total,
             resolves: solves.len(),
-            route: route.into(),
+            route,
             iterations: solves.iter().map(|s| s.report.iterations).sum(),
             residual: solves.iter().map(|s| s.report.residual).fold(0.0, f64::max),
             wall_time: self.start.elapsed().as_secs_f64(),
