@@ -40,7 +40,15 @@
 //!   displacement stays the one they had when they broke free); a free piece
 //!   that carries an applied load ends the run (the body has failed);
 //! - complete separation (every reaction below `1e-6` of its peak) ends the
-//!   run, reporting the step.
+//!   run, reporting the step; so does `stop_after_peak`, once every reaction
+//!   has fallen below that fraction of its peak.
+//!
+//! **Solves** (module docs of [`crate::solve::pipeline`]): one at λ = 1 per
+//! bond set. The first factorises; after bonds break only the stiffness
+//! columns they touch are refilled, and the re-solve either updates the old
+//! Cholesky factor exactly by the rank-one terms of the broken bonds
+//! (bond-based, [`crate::solve::low_rank`]) or iterates with the old factor
+//! as preconditioner (shear model, or when points were newly held).
 
 use super::static_solve::{reactions, right_hand_side, Prepared, Reaction, Timings};
 use crate::assembly::dofs::DofMap;
