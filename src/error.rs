@@ -120,6 +120,18 @@ pub enum NumericalError {
         limit_bytes: f64,
         limited_by: MemoryLimit,
     },
+    /// An explicit run produced a non-finite state.
+    #[error(
+        "the explicit run diverged at step {step} (t = {time:e} s): point {point} (x = {position:?}) \
+         has a non-finite displacement or velocity; the time step is too large for the stiffest \
+         point (forced above the stable one?) or a load grows without bound"
+    )]
+    Diverged {
+        step: usize,
+        time: f64,
+        point: usize,
+        position: [f64; 3],
+    },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
     Solver(String),

@@ -10,7 +10,7 @@
 //! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error.
 
 use clap::{Parser, Subcommand};
-use dhpd::drivers::{quasi_static, static_solve};
+use dhpd::drivers::{dynamics, quasi_static, static_solve};
 use dhpd::error::Error;
 use dhpd::output::series::SeriesWriter;
 use dhpd::output::{self, Plan};
@@ -50,6 +50,8 @@ fn main() {
         Some(Command::Run { scene, out }) => scene::load(&scene).and_then(|s| {
             if s.quasi_static.is_some() {
                 run_fracture(&s, out.as_deref())
+            } else if s.dynamics.is_some() {
+                run_dynamics(&s, out.as_deref())
             } else {
                 run(&s, out.as_deref()).map(|_| ())
             }
@@ -117,6 +119,65 @@ fn run_fracture(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
         start.elapsed().as_secs_f64(),
     )?;
     print_fracture_report(scene, &solution, &dir);
+    Ok(())
+}
+
+/// An explicit dynamics or dynamic relaxation run, written like a fracture run.
+fn run_dynamics(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
+    let start = Instant::now();
+    let dir = output_dir(scene, out);
+    output::check_output_dir(&dir)?;
+    let disc = dhpd::discretization::build(scene)?;
+    let plan = Plan::new(scene, &disc)?;
+    drop(disc);
+    let staging = output::Staging::new(&dir)?;
+    let probes: Vec<usize> = plan.probes.iter().map(|p| p.1).collect();
+    let mut writer = output::dynamics::DynamicsWriter::new(staging.path());
+    let solution = dynamics::run(scene, &probes, &mut writer)?;
+    let entries = writer.finish();
+    output::dynamics::write(
+        staging,
+        scene,
+        &plan,
+        &solution,
+        &entries,
+        start.elapsed().as_secs_f64(),
+    )?;
+    let s = &solution;
+    println!(
+        "scene {}: {} points, {} bonds; {} ({} threads)",
+        scene.name,
+        s.disc.points.len(),
+        s.bonds,
+        s.kernel,
+        rayon::current_num_threads()
+    );
+    match s.outcome {
+        dynamics::Outcome::Completed => println!(
+            "{} steps of {:.4e} s (stable {:.4e} s) to t = {:.4e} s; {:.3} s integrating, \
+             {:.1} M directed bond updates/s; energy balance error ≤ {:.2e}; {} bonds broken",
+            s.steps,
+            s.time_step,
+            s.stable_time_step.unwrap_or(f64::NAN),
+            s.time,
+            s.timings.integration,
+            s.bond_updates_per_second / 1e6,
+            s.max_balance_error,
+            s.records.last().map_or(0, |r| r.broken_bonds)
+        ),
+        dynamics::Outcome::Converged { residual } => println!(
+            "dynamic relaxation converged in {} steps (relative out-of-balance force {:.2e}), {:.3} s",
+            s.steps, residual, s.timings.integration
+        ),
+        dynamics::Outcome::NotConverged { residual } => println!(
+            "dynamic relaxation NOT converged after {} steps: relative out-of-balance force {:.2e}",
+            s.steps, residual
+        ),
+    }
+    for line in &s.log {
+        println!("  {line}");
+    }
+    println!("results in {}", dir.display());
     Ok(())
 }
 

@@ -147,6 +147,22 @@ impl Criterion {
         self.critical[i]
     }
 
+    /// The value at which bond `owner → neighbour` breaks: its owner's critical
+    /// value, or ∞ when it may not break (no fracture parameter, or either end
+    /// in a no-fail zone). The shear model's tension check comes on top.
+    pub fn limit(&self, owner: usize, neighbour: usize) -> f64 {
+        if self.protected[owner] || self.protected[neighbour] {
+            f64::INFINITY
+        } else {
+            self.critical[owner]
+        }
+    }
+
+    /// Whether the criterion has a tension check (shear model).
+    pub fn has_tension_check(&self) -> bool {
+        self.tension_check
+    }
+
     /// Writes, for every bond, `value / critical value` for displacements `u`
     /// (0 for a broken bond, a bond that may not break, a compressed bond-based
     /// bond, or a shear bond with both ends in compression). A bond breaks when
@@ -173,14 +189,12 @@ impl Criterion {
             .enumerate()
             .for_each(|(i, ratios)| {
                 let first = bonds.offsets[i];
-                let critical = self.critical[i];
                 for b in bonds.owned_by(i) {
                     let j = bonds.neighbour[b] as usize;
                     let slot = &mut ratios[b - first];
+                    let critical = self.limit(i, j);
                     let eligible = bonds.intact[b]
                         && critical.is_finite()
-                        && !self.protected[i]
-                        && !self.protected[j]
                         && (!self.tension_check
                             || dilatation[i].is_some_and(|t| t >= 0.0)
                             || dilatation[j].is_some_and(|t| t >= 0.0));
@@ -197,26 +211,29 @@ impl Criterion {
 /// Local damage of every point, `φ_i = 1 − Σ_intact V_j ν_ij / Σ_all V_j ν_ij` over
 /// the bonds it owns (0 for a point that owns no bond).
 pub fn damage(disc: &Discretization) -> Vec<f64> {
+    (0..disc.points.len())
+        .into_par_iter()
+        .map(|i| point_damage(disc, i))
+        .collect()
+}
+
+/// Local damage `φ_i` of one point (see [`damage`]).
+pub fn point_damage(disc: &Discretization, i: usize) -> f64 {
     let p = &disc.points;
     let bonds = &disc.bonds;
-    (0..p.len())
-        .into_par_iter()
-        .map(|i| {
-            let (mut intact, mut all) = (0.0, 0.0);
-            for b in bonds.owned_by(i) {
-                let w = p.volume[bonds.neighbour[b] as usize] * bonds.volume_factor[b];
-                all += w;
-                if bonds.intact[b] {
-                    intact += w;
-                }
-            }
-            if all > 0.0 {
-                1.0 - intact / all
-            } else {
-                0.0
-            }
-        })
-        .collect()
+    let (mut intact, mut all) = (0.0, 0.0);
+    for b in bonds.owned_by(i) {
+        let w = p.volume[bonds.neighbour[b] as usize] * bonds.volume_factor[b];
+        all += w;
+        if bonds.intact[b] {
+            intact += w;
+        }
+    }
+    if all > 0.0 {
+        1.0 - intact / all
+    } else {
+        0.0
+    }
 }
 
 #[cfg(test)]

@@ -9,7 +9,7 @@ use std::path::Path;
 
 const AXES: [&str; 3] = ["x", "y", "z"];
 
-fn header(d: usize, prefix: &str) -> String {
+pub(crate) fn header(d: usize, prefix: &str) -> String {
     AXES[..d]
         .iter()
         .map(|a| format!("{prefix}{a}"))
@@ -17,7 +17,7 @@ fn header(d: usize, prefix: &str) -> String {
         .join(",")
 }
 
-fn row(values: &[f64; 3], d: usize) -> String {
+pub(crate) fn row(values: &[f64; 3], d: usize) -> String {
     values[..d]
         .iter()
         .map(|v| format!("{v:e}"))
@@ -37,8 +37,12 @@ pub fn write_points(path: &Path, scene: &Scene, s: &PointData) -> Result<(), Err
         .iter()
         .map(|(name, _, _)| format!(",{name}"))
         .collect();
+    let velocity_header = match s.velocity {
+        Some(_) => format!(",{}", header(d, "v_")),
+        None => String::new(),
+    };
     let mut t = format!(
-        "id,{},{},volume,spacing,horizon,material,bond_count{}{}\n",
+        "id,{},{}{velocity_header},volume,spacing,horizon,material,bond_count{}{}\n",
         header(d, ""),
         header(d, "u_"),
         if s.stress.is_some() {
@@ -59,9 +63,12 @@ pub fn write_points(path: &Path, scene: &Scene, s: &PointData) -> Result<(), Err
         let damage = s
             .damage
             .map_or(String::new(), |phi| format!(",{:e}", phi[i]));
+        let velocity = s
+            .velocity
+            .map_or(String::new(), |v| format!(",{}", row(&v[i], d)));
         let _ = writeln!(
             t,
-            "{i},{},{},{:e},{:e},{:e},{},{}{stress}{damage}",
+            "{i},{},{}{velocity},{:e},{:e},{:e},{},{}{stress}{damage}",
             row(&p.x[i], d),
             row(&s.u[i], d),
             p.volume[i],

@@ -4,6 +4,7 @@
 //! requested one only when complete, so a failed run leaves no partial result.
 
 pub mod csv;
+pub mod dynamics;
 pub mod matrix_market;
 pub mod series;
 pub mod summary;
@@ -77,6 +78,8 @@ pub struct PointData<'a> {
     pub disc: &'a Discretization,
     /// Displacement of every point.
     pub u: &'a [[f64; 3]],
+    /// Velocity of every point, for dynamics runs.
+    pub velocity: Option<&'a [[f64; 3]]>,
     /// Recovered stress, when computed.
     pub stress: Option<&'a [Block]>,
     /// Damage per point, for fracture runs.
@@ -89,6 +92,7 @@ impl StaticSolution {
         PointData {
             disc: &self.disc,
             u: &self.u,
+            velocity: None,
             stress: self.stress.as_deref(),
             damage: None,
         }
@@ -154,7 +158,12 @@ impl Drop for Staging {
 }
 
 /// Writes the point files, profiles and probes of one state into `dir`.
-fn write_points(dir: &Path, scene: &Scene, plan: &Plan, data: &PointData) -> Result<(), Error> {
+pub(crate) fn write_points(
+    dir: &Path,
+    scene: &Scene,
+    plan: &Plan,
+    data: &PointData,
+) -> Result<(), Error> {
     if scene.output.vtu {
         vtu::write(&dir.join("points.vtu"), data)?;
     }
@@ -202,6 +211,7 @@ pub fn write_quasi_static(
     let data = PointData {
         disc: &solution.disc,
         u: &solution.u,
+        velocity: None,
         stress: None,
         damage: Some(&solution.damage),
     };

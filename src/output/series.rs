@@ -48,6 +48,7 @@ impl Observer for SeriesWriter {
                 &PointData {
                     disc: s.disc,
                     u: s.u,
+                    velocity: None,
                     stress: None,
                     damage: Some(s.damage),
                 },

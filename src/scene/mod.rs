@@ -6,9 +6,14 @@
 //! are done by [`crate::discretization`] right after the points exist and before
 //! any bond is built.
 
+mod dynamics;
 mod spec;
 mod validate;
 
+pub use dynamics::{
+    Dynamics, Gaussian, InitialCondition, Motion, RunLength, TimeFunction,
+    MAX_STEPS as MAX_DYNAMICS_STEPS,
+};
 pub use spec::*;
 pub use validate::{
     Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,

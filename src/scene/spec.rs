@@ -49,6 +49,13 @@ pub struct SceneSpec {
     /// Quasi-static load stepping with bond breakage (its presence selects the
     /// quasi-static driver).
     pub quasi_static: Option<QuasiStaticSpec>,
+    /// Explicit dynamics or dynamic relaxation (its presence selects the
+    /// explicit driver).
+    pub dynamics: Option<DynamicsSpec>,
+    /// Explicit dynamics: initial displacement and velocity, per box or as a
+    /// Gaussian pulse; later entries add to earlier ones.
+    #[serde(default)]
+    pub initial_conditions: Vec<InitialConditionSpec>,
 }
 
 /// `[model]`
@@ -65,7 +72,10 @@ pub struct ModelSpec {
     /// 1D only: cross-section area in m² (default 1).
     pub area: Option<f64>,
     /// `"dual"` (default): every point keeps its own horizon (DH-PD);
-    /// `"constant"`: every point takes the largest horizon of the body (baseline).
+    /// `"constant"`: every point takes the largest horizon of the body (baseline);
+    /// `"traditional"` (explicit dynamics, bond-based): every point keeps its own
+    /// horizon but feels only the bonds in it, with twice their force (the
+    /// variable-horizon PD with ghost forces the papers compare against).
     #[serde(default)]
     pub horizons: HorizonMode,
     /// Shear model only: `"weighted"` (001 Eq. 15, default) or `"gradient"`
@@ -137,6 +147,11 @@ pub enum HorizonMode {
     Dual,
     /// Every point takes the largest horizon in the body (constant-horizon baseline).
     Constant,
+    /// Each point keeps its own horizon and feels only the bonds in it, each with
+    /// twice its dual-horizon force: no reaction from the points whose horizons
+    /// hold it (traditional variable-horizon PD, with ghost forces). Explicit
+    /// dynamics with the bond-based model only.
+    Traditional,
 }
 
 /// What to do with points left without any bond.
@@ -214,6 +229,8 @@ pub struct MaterialSpec {
     pub critical_stretch: Option<f64>,
     /// Shear model: critical deviatoric bond strain ε^d_max, instead of `fracture_energy`.
     pub critical_deviatoric_strain: Option<f64>,
+    /// Mass density ρ in kg/m³ (explicit dynamics only; required there).
+    pub density: Option<f64>,
 }
 
 /// An axis-aligned box; 1D, 2D or 3D coordinates.
@@ -295,7 +312,8 @@ pub struct ComponentsSpec {
     pub z: Option<f64>,
 }
 
-/// `[[boundary]]`: prescribed displacement on the points inside a box.
+/// `[[boundary]]`: prescribed displacement (or, in explicit dynamics,
+/// velocity) on the points inside a box.
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct BoundarySpec {
@@ -304,8 +322,121 @@ pub struct BoundarySpec {
     /// Points inside this box (inclusive) are constrained.
     #[serde(rename = "box")]
     pub bounds: BoxSpec,
-    /// Prescribed components in m.
-    pub displacement: ComponentsSpec,
+    /// Prescribed components in m (this or `velocity`).
+    pub displacement: Option<ComponentsSpec>,
+    /// Explicit dynamics: prescribed velocity components in m/s (this or `displacement`).
+    pub velocity: Option<ComponentsSpec>,
+    /// Explicit dynamics: the prescribed values are multiplied by this function
+    /// of time (default constant 1).
+    pub time_function: Option<TimeFunctionSpec>,
+}
+
+/// A function of time `g(t)` that scales a prescribed value or a load.
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeFunctionSpec {
+    /// `"constant"` (g = 1), `"ramp"` (g = t/duration, then 1) or `"table"`
+    /// (piecewise linear through `times`/`values`, constant outside).
+    pub kind: TimeFunctionKind,
+    /// `ramp`: time to reach 1, in s.
+    pub duration: Option<f64>,
+    /// `table`: increasing times in s.
+    pub times: Option<Vec<f64>>,
+    /// `table`: values at `times`.
+    pub values: Option<Vec<f64>>,
+}
+
+/// Kind of time function.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TimeFunctionKind {
+    /// `g(t) = 1`.
+    Constant,
+    /// `g(t) = min(t / duration, 1)`.
+    Ramp,
+    /// Piecewise linear.
+    Table,
+}
+
+/// `[[initial_conditions]]`: initial displacement and velocity (explicit dynamics).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialConditionSpec {
+    /// Points inside this box (default: the whole body).
+    #[serde(rename = "box")]
+    pub bounds: Option<BoxSpec>,
+    /// Initial displacement components in m.
+    pub displacement: Option<ComponentsSpec>,
+    /// Initial velocity components in m/s.
+    pub velocity: Option<ComponentsSpec>,
+    /// A Gaussian displacement pulse.
+    pub gaussian: Option<GaussianSpec>,
+}
+
+/// `u(x, 0) = amplitude · exp(−|x − center|² / width²)`, with the distance over
+/// the axes listed in `center` (give fewer components for a plane pulse: `[0.5]`
+/// in 2D is a pulse across x only).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct GaussianSpec {
+    /// Centre (1 to d components: the axes the distance is measured along).
+    pub center: Vec<f64>,
+    /// Width in m (> 0).
+    pub width: f64,
+    /// Displacement vector at the centre, one entry per dimension.
+    pub amplitude: Vec<f64>,
+}
+
+/// Explicit time integrator.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DynamicsMethod {
+    /// Velocity Verlet (default).
+    #[default]
+    Verlet,
+    /// Adaptive dynamic relaxation (Kilic & Madenci 2010) for the static answer.
+    Relaxation,
+}
+
+/// Which forces the explicit driver integrates.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForceKernel {
+    /// The bond kernels with the current bond direction / polar rotation (default).
+    #[default]
+    Nonlinear,
+    /// `F = −K u` with the assembled tangent of the implicit solver.
+    Linearised,
+}
+
+/// `[dynamics]`: explicit dynamics (its presence selects the explicit driver).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DynamicsSpec {
+    /// `"verlet"` (default) or `"relaxation"`.
+    #[serde(default)]
+    pub method: DynamicsMethod,
+    /// `"nonlinear"` (default) or `"linearised"`.
+    #[serde(default)]
+    pub kernel: ForceKernel,
+    /// Number of steps (this or `end_time`; relaxation: the largest number of steps).
+    pub steps: Option<usize>,
+    /// Verlet: simulated time in s (this or `steps`).
+    pub end_time: Option<f64>,
+    /// Verlet: time step in s (default: `safety_factor` × the stable step).
+    pub time_step: Option<f64>,
+    /// Verlet: fraction of the stable time step (default 0.8).
+    pub safety_factor: Option<f64>,
+    /// Verlet: accept a `time_step` above the stable one (default false).
+    #[serde(default)]
+    pub force_time_step: bool,
+    /// Verlet: mass-proportional damping coefficient α in 1/s (001 Eq. 42; default 0).
+    pub damping: Option<f64>,
+    /// Relaxation: stop when the out-of-balance force is this fraction of the
+    /// applied (or reaction) force (default 1e-8).
+    pub tolerance: Option<f64>,
+    /// Write probes and the energy history every this many steps (default 1).
+    pub record_every: Option<usize>,
 }
 
 /// Kind of load.
@@ -333,6 +464,9 @@ pub struct LoadSpec {
     pub bounds: Option<BoxSpec>,
     /// Traction vector (Pa) or body force density (N/m³), one entry per dimension.
     pub value: Vec<f64>,
+    /// Explicit dynamics: the load is multiplied by this function of time
+    /// (default constant 1).
+    pub time_function: Option<TimeFunctionSpec>,
 }
 
 /// Linear solver.
@@ -390,10 +524,10 @@ pub struct OutputSpec {
     /// Point probes, written together to `probes.csv`.
     #[serde(default)]
     pub probes: Vec<ProbeSpec>,
-    /// Fracture runs: write a VTU file of the state every this many steps
-    /// (listed in `series.pvd`); default: the final state only.
+    /// Fracture and dynamics runs: write a VTU file of the state every this many
+    /// steps (listed in `series.pvd`); default: the final state only.
     pub every: Option<usize>,
-    /// Fracture runs: write a VTU file at these steps too.
+    /// Fracture and dynamics runs: write a VTU file at these steps too.
     #[serde(default)]
     pub steps: Vec<usize>,
 }

@@ -264,6 +264,8 @@ pub struct Scene {
     pub fracture: FractureSettings,
     /// Quasi-static fracture run (None: a static solve).
     pub quasi_static: Option<QuasiStatic>,
+    /// Explicit dynamics settings (selects the explicit driver).
+    pub dynamics: Option<super::dynamics::Dynamics>,
 }
 
 impl Scene {
@@ -443,7 +445,23 @@ impl Scene {
                     format!("\"{}\" is used twice", b.name),
                 ));
             }
-            let values = components(&format!("{f}.displacement"), &b.displacement, d)?;
+            let values = match (&b.displacement, &b.velocity) {
+                (Some(c), None) => components(&format!("{f}.displacement"), c, d)?,
+                (None, Some(c)) => components(&format!("{f}.velocity"), c, d)?,
+                (Some(_), Some(_)) => {
+                    return Err(InputError::new(
+                        format!("{f}.velocity"),
+                        "give either displacement or velocity, not both",
+                    ))
+                }
+                (None, None) => {
+                    return Err(InputError::new(
+                        format!("{f}.displacement"),
+                        "missing: give the prescribed displacement components \
+                         (or, in explicit dynamics, velocity)",
+                    ))
+                }
+            };
             boundaries.push(Prescribed {
                 name: b.name.clone(),
                 bounds: aabb(&format!("{f}.box"), &b.bounds, d)?,
@@ -457,8 +475,30 @@ impl Scene {
         }
 
         let output = output(&spec.output, d)?;
+        let dynamics = super::dynamics::validate(&spec, d)?;
         let (fracture, quasi_static) = fracture_runs(&spec, &materials, &boundaries, &loads, d)?;
-        if quasi_static.is_none() {
+        if let Some(dy) = &dynamics {
+            let breaks = materials.iter().any(|m| m.fracture.is_some());
+            if breaks && dy.method == DynamicsMethod::Relaxation {
+                return Err(InputError::new(
+                    "dynamics.method",
+                    "dynamic relaxation finds a static answer and breaks no bond: remove the \
+                     fracture parameters, or use [quasi_static] for fracture under load",
+                ));
+            }
+            if breaks && dy.kernel == ForceKernel::Linearised {
+                return Err(InputError::new(
+                    "dynamics.kernel",
+                    "bond breakage needs the nonlinear kernel (the assembled tangent is frozen)",
+                ));
+            }
+            if spec.solver.refactor_iterations.is_some() {
+                return Err(InputError::new(
+                    "solver.refactor_iterations",
+                    "applies to quasi-static fracture runs only",
+                ));
+            }
+        } else if quasi_static.is_none() {
             for (key, present) in [
                 ("output.every", output.every.is_some()),
                 ("output.steps", !output.steps.is_empty()),
@@ -470,7 +510,8 @@ impl Scene {
                 if present {
                     return Err(InputError::new(
                         key,
-                        "applies to fracture runs only (add a [quasi_static] section)",
+                        "applies to fracture and dynamics runs only (add a [quasi_static] \
+                         or [dynamics] section)",
                     ));
                 }
             }
@@ -520,6 +561,7 @@ impl Scene {
             output,
             fracture,
             quasi_static,
+            dynamics,
         };
         if scene.output.stress && scene.model != ModelKind::Shear {
             return Err(InputError::new(
@@ -649,11 +691,11 @@ fn fracture_parameter(
             ),
         ));
     }
-    if spec.quasi_static.is_none() {
+    if spec.quasi_static.is_none() && spec.dynamics.is_none() {
         return Err(InputError::new(
             f,
-            "fracture parameters apply to runs that break bonds: add a [quasi_static] section, \
-             or remove the parameter for a static solve",
+            "fracture parameters apply to runs that break bonds: add a [quasi_static] or \
+             [dynamics] section, or remove the parameter for a static solve",
         ));
     }
     positive(&f, value)?;
@@ -689,15 +731,6 @@ fn fracture_runs(
     loads: &[Load],
     d: usize,
 ) -> Result<(FractureSettings, Option<QuasiStatic>), InputError> {
-    let Some(q) = &spec.quasi_static else {
-        if spec.fracture.is_some() {
-            return Err(InputError::new(
-                "fracture",
-                "bond breakage settings need a run that breaks bonds: add a [quasi_static] section",
-            ));
-        }
-        return Ok((FractureSettings::default(), None));
-    };
     let mut fracture = FractureSettings::default();
     if let Some(f) = &spec.fracture {
         fracture.shear_energy = f.shear_energy;
@@ -707,6 +740,16 @@ fn fracture_runs(
                 .push(aabb(&format!("fracture.no_fail[{k}].box"), &b.bounds, d)?);
         }
     }
+    let Some(q) = &spec.quasi_static else {
+        if spec.fracture.is_some() && !materials.iter().any(|m| m.fracture.is_some()) {
+            return Err(InputError::new(
+                "fracture",
+                "bond breakage settings need a run that breaks bonds: add a [quasi_static] \
+                 or [dynamics] section and a fracture parameter",
+            ));
+        }
+        return Ok((fracture, None));
+    };
     if !materials.iter().any(|m| m.fracture.is_some()) {
         return Err(InputError::new(
             "quasi_static",
@@ -822,7 +865,7 @@ fn fracture_runs(
 /// Bytes per GiB.
 const GIB: f64 = 1073741824.0;
 
-fn positive(field: &str, v: f64) -> Result<(), InputError> {
+pub(super) fn positive(field: &str, v: f64) -> Result<(), InputError> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
@@ -899,7 +942,7 @@ fn coords(field: &str, v: &[f64], d: usize) -> Result<[f64; 3], InputError> {
     Ok(x)
 }
 
-fn aabb(field: &str, b: &BoxSpec, d: usize) -> Result<Aabb, InputError> {
+pub(super) fn aabb(field: &str, b: &BoxSpec, d: usize) -> Result<Aabb, InputError> {
     let min = coords(&format!("{field}.min"), &b.min, d)?;
     let max = coords(&format!("{field}.max"), &b.max, d)?;
     let mut bounds = Aabb {
@@ -927,7 +970,11 @@ fn overlap(a: &Aabb, b: &Aabb, d: usize) -> bool {
     })
 }
 
-fn components(field: &str, c: &ComponentsSpec, d: usize) -> Result<[Option<f64>; 3], InputError> {
+pub(super) fn components(
+    field: &str,
+    c: &ComponentsSpec,
+    d: usize,
+) -> Result<[Option<f64>; 3], InputError> {
     let values = [c.x, c.y, c.z];
     for (a, axis) in ["x", "y", "z"].iter().enumerate() {
         match values[a] {

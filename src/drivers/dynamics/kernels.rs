@@ -1,0 +1,562 @@
+//! Internal forces for the explicit driver, from the same bond kernels as the
+//! implicit path, in parallel without races and without per-step allocation
+//! of force arrays.
+//!
+//! Three force fields:
+//!
+//! - [`PairKernel`] (bond-based): each point gathers over the distinct points it
+//!   shares a bond with, in either direction. Bond `i→j` puts `+w_ij s n` on `i`
+//!   and bond `j→i` puts `−w_ji s n_ji = +w_ji s n` on `i` (formulation Sec. 2-3):
+//!   the two bonds of a pair share the stretch `s` and direction `n`, so the pair
+//!   acts on `i` with `W s n`, `W = w_ij + w_ji` (each term only while its bond is
+//!   intact; `w = C_owner V_i V_j ν`). Every point writes only its own force.
+//!   The stretch is `s = (2 ξ·η + η·η) / ((|ξ+η| + |ξ|) |ξ|)`, which equals
+//!   `(|ξ+η| − |ξ|)/|ξ|` without its cancellation at small strain, and is
+//!   bitwise the same from both ends of a pair. With `traditional` horizons a
+//!   point feels only the bonds in its own horizon, `W = 2 w_ij` (the
+//!   constant-horizon micromodulus; ghost forces where horizons differ).
+//! - [`FamilyKernel`] (any model, here the shear model): each owner's bond forces
+//!   ([`Model::owner_forces`], nonlinear with the polar rotation) into a per-bond
+//!   buffer, then each point sums its own bonds and subtracts the bonds ending at it.
+//! - [`TangentKernel`]: `F = −K u` with the assembled tangent of the implicit
+//!   solver on every degree of freedom, for the linearised run `M ü + K u = f`.
+//!
+//! Bonds break by the criteria of [`crate::damage`] (one implementation for every
+//! driver): after a force evaluation, each bond whose value reached its limit is
+//! broken and carries no force from the next evaluation on.
+
+use crate::assembly::dofs::DofMap;
+use crate::assembly::pattern::Pattern;
+use crate::assembly::split_at_offsets;
+use crate::assembly::stiffness::Stiffness;
+use crate::damage::{self, Criterion};
+use crate::discretization::Discretization;
+use crate::model::bond_based::BondBased;
+use crate::model::Model;
+use rayon::prelude::*;
+
+/// What a force evaluation broke.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Breaks {
+    /// Bonds broken.
+    pub bonds: usize,
+    /// Energy the broken bonds stored when they broke, when the model defines it.
+    pub energy: f64,
+}
+
+/// A force field of the explicit driver.
+pub trait ForceField: Send {
+    /// Writes the internal force on every point for displacements `u` into `out`,
+    /// then breaks the bonds that reached their limit.
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks;
+
+    /// Stored strain energy for displacements `u`, where the field has one.
+    fn strain_energy(&self, u: &[[f64; 3]]) -> Option<f64>;
+
+    /// Points and bonds (with the current intact flags).
+    fn disc(&self) -> &Discretization;
+
+    /// Hands the discretisation back at the end of a run.
+    fn into_disc(self: Box<Self>) -> Discretization;
+
+    /// Damage of every point.
+    fn damage(&self) -> Vec<f64> {
+        damage::damage(self.disc())
+    }
+}
+
+/// Marks an entry's directed bond as absent.
+const NONE: u32 = u32::MAX;
+
+/// One point's view of a pair it shares bonds with (16 bytes: the only per-bond
+/// data read in the force loop; positions and displacements are per point).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Pair {
+    /// `W`: force per unit stretch along the current bond direction.
+    weight: f64,
+    /// Smallest limit of the pair's intact bonds, rounded down to `f32` (a
+    /// screen; the exact comparison follows), ∞ when none may break.
+    limit: f32,
+    /// The other point.
+    neighbour: u32,
+}
+
+/// The bond-based model gathered per point (module docs).
+pub struct PairKernel {
+    disc: Discretization,
+    start: Vec<usize>,
+    pairs: Vec<Pair>,
+    /// Per entry: the bond owned by the row's point, or [`NONE`].
+    owned: Vec<u32>,
+    /// Per entry: the bond owned by the neighbour, ending at the row's point, or [`NONE`].
+    incoming: Vec<u32>,
+    /// Per entry: the index of the neighbour's entry for this point, or [`NONE`].
+    mirror: Vec<u32>,
+    /// `w_b` of every directed bond.
+    bond_weight: Vec<f64>,
+    criterion: Option<Criterion>,
+    traditional: bool,
+    flagged: Vec<bool>,
+}
+
+/// `(s, y, |y|)` of a pair from `x_i, x_j, u_i, u_j`; bitwise the same both ways.
+#[inline(always)]
+fn stretch(xi: &[f64; 3], xj: &[f64; 3], ui: &[f64; 3], uj: &[f64; 3]) -> (f64, [f64; 3], f64) {
+    let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
+    let e = [uj[0] - ui[0], uj[1] - ui[1], uj[2] - ui[2]];
+    let y = [d[0] + e[0], d[1] + e[1], d[2] + e[2]];
+    let l = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+    let yl = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+    let de = d[0] * e[0] + d[1] * e[1] + d[2] * e[2];
+    let ee = e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+    ((2.0 * de + ee) / ((yl + l) * l), y, yl)
+}
+
+fn round_down(v: f64) -> f32 {
+    let r = v as f32;
+    if (r as f64) > v {
+        r.next_down()
+    } else {
+        r
+    }
+}
+
+impl PairKernel {
+    /// Gathers the bonds of `disc` per point; `criterion` breaks bonds when given.
+    pub fn new(
+        disc: Discretization,
+        model: &BondBased,
+        criterion: Option<Criterion>,
+        traditional: bool,
+    ) -> Self {
+        let n = disc.points.len();
+        let bonds = &disc.bonds;
+        let p = &disc.points;
+        let mut bond_weight = vec![0.0; bonds.len()];
+        for i in 0..n {
+            for b in bonds.owned_by(i) {
+                let j = bonds.neighbour[b] as usize;
+                bond_weight[b] =
+                    model.micromodulus[i] * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+            }
+        }
+        // (row, neighbour, owned?, bond), sorted by row then neighbour.
+        let mut items: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(2 * bonds.len());
+        for i in 0..n {
+            for b in bonds.owned_by(i) {
+                let j = bonds.neighbour[b];
+                items.push((i as u32, j, true, b as u32));
+                if !traditional {
+                    items.push((j, i as u32, false, b as u32));
+                }
+            }
+        }
+        items.par_sort_unstable_by_key(|t| (t.0, t.1, !t.2));
+        let mut start = vec![0usize; n + 1];
+        let (mut neighbours, mut owned, mut incoming) = (Vec::new(), Vec::new(), Vec::new());
+        let mut k = 0;
+        while k < items.len() {
+            let (row, nb) = (items[k].0, items[k].1);
+            let (mut o, mut inc) = (NONE, NONE);
+            while k < items.len() && items[k].0 == row && items[k].1 == nb {
+                if items[k].2 {
+                    o = items[k].3;
+                } else {
+                    inc = items[k].3;
+                }
+                k += 1;
+            }
+            start[row as usize + 1] += 1;
+            neighbours.push(nb);
+            owned.push(o);
+            incoming.push(inc);
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mirror = (0..n)
+            .flat_map(|i| (start[i]..start[i + 1]).map(move |e| (i, e)))
+            .map(|(i, e)| {
+                let j = neighbours[e] as usize;
+                match neighbours[start[j]..start[j + 1]].binary_search(&(i as u32)) {
+                    Ok(pos) if !traditional => (start[j] + pos) as u32,
+                    _ => NONE,
+                }
+            })
+            .collect();
+        let pairs = neighbours
+            .iter()
+            .map(|&nb| Pair {
+                weight: 0.0,
+                limit: f32::INFINITY,
+                neighbour: nb,
+            })
+            .collect();
+        let mut kernel = PairKernel {
+            disc,
+            start,
+            pairs,
+            owned,
+            incoming,
+            mirror,
+            bond_weight,
+            criterion,
+            traditional,
+            flagged: vec![false; n],
+        };
+        let criterion = kernel.criterion.take();
+        for i in 0..n {
+            for e in kernel.start[i]..kernel.start[i + 1] {
+                kernel.refresh(criterion.as_ref(), i, e);
+            }
+        }
+        kernel.criterion = criterion;
+        kernel
+    }
+
+    /// Recomputes entry `e` of row `i` from its bonds' intact flags.
+    fn refresh(&mut self, criterion: Option<&Criterion>, i: usize, e: usize) {
+        let j = self.pairs[e].neighbour as usize;
+        let (mut weight, mut limit) = (0.0, f64::INFINITY);
+        let scale = if self.traditional { 2.0 } else { 1.0 };
+        for (b, owner, other) in [(self.owned[e], i, j), (self.incoming[e], j, i)] {
+            if b != NONE && self.disc.bonds.intact[b as usize] {
+                weight += scale * self.bond_weight[b as usize];
+                if let Some(c) = criterion {
+                    limit = limit.min(c.limit(owner, other));
+                }
+            }
+        }
+        self.pairs[e].weight = weight;
+        self.pairs[e].limit = round_down(limit);
+    }
+
+    /// Breaks the bonds of the flagged rows that reached their limit (exact
+    /// comparison); returns what broke.
+    fn break_flagged(&mut self, u: &[[f64; 3]]) -> Breaks {
+        let mut breaks = Breaks::default();
+        let Some(criterion) = self.criterion.take() else {
+            return breaks;
+        };
+        for i in 0..self.flagged.len() {
+            if !std::mem::take(&mut self.flagged[i]) {
+                continue;
+            }
+            for e in self.start[i]..self.start[i + 1] {
+                let j = self.pairs[e].neighbour as usize;
+                let x = &self.disc.points.x;
+                let (s, _, _) = stretch(&x[i], &x[j], &u[i], &u[j]);
+                if !((s as f32) >= self.pairs[e].limit) {
+                    continue;
+                }
+                let length = crate::geometry::norm(&crate::geometry::sub(&x[j], &x[i]));
+                let mut changed = false;
+                for (b, owner, other) in [(self.owned[e], i, j), (self.incoming[e], j, i)] {
+                    if b != NONE
+                        && self.disc.bonds.intact[b as usize]
+                        && s >= criterion.limit(owner, other)
+                    {
+                        self.disc.bonds.intact[b as usize] = false;
+                        breaks.bonds += 1;
+                        breaks.energy += 0.5 * self.bond_weight[b as usize] * length * s * s;
+                        changed = true;
+                    }
+                }
+                if changed {
+                    self.refresh(Some(&criterion), i, e);
+                    if self.mirror[e] != NONE {
+                        self.refresh(Some(&criterion), j, self.mirror[e] as usize);
+                    }
+                }
+            }
+        }
+        self.criterion = Some(criterion);
+        breaks
+    }
+}
+
+impl ForceField for PairKernel {
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+        let x = &self.disc.points.x;
+        let (start, pairs) = (&self.start, &self.pairs);
+        let any = std::sync::atomic::AtomicBool::new(false);
+        out.par_iter_mut()
+            .zip(self.flagged.par_iter_mut())
+            .enumerate()
+            .with_min_len(64)
+            .for_each(|(i, (f, flag))| {
+                let (xi, ui) = (&x[i], &u[i]);
+                let mut acc = [0.0; 3];
+                let mut over = false;
+                for p in &pairs[start[i]..start[i + 1]] {
+                    let j = p.neighbour as usize;
+                    let (s, y, yl) = stretch(xi, &x[j], ui, &u[j]);
+                    over |= (s as f32) >= p.limit;
+                    if yl > 0.0 {
+                        let c = p.weight * s / yl;
+                        acc[0] += c * y[0];
+                        acc[1] += c * y[1];
+                        acc[2] += c * y[2];
+                    }
+                }
+                *f = acc;
+                *flag = over;
+                if over {
+                    any.store(true, std::sync::atomic::Ordering::Relaxed);
+                }
+            });
+        if any.into_inner() {
+            self.break_flagged(u)
+        } else {
+            Breaks::default()
+        }
+    }
+
+    fn strain_energy(&self, u: &[[f64; 3]]) -> Option<f64> {
+        let x = &self.disc.points.x;
+        let energy: f64 = (0..x.len())
+            .into_par_iter()
+            .map(|i| {
+                self.pairs[self.start[i]..self.start[i + 1]]
+                    .iter()
+                    .map(|p| {
+                        let j = p.neighbour as usize;
+                        let (s, _, _) = stretch(&x[i], &x[j], &u[i], &u[j]);
+                        let l = crate::geometry::norm(&crate::geometry::sub(&x[j], &x[i]));
+                        0.25 * p.weight * l * s * s
+                    })
+                    .sum::<f64>()
+            })
+            .sum();
+        Some(energy)
+    }
+
+    fn disc(&self) -> &Discretization {
+        &self.disc
+    }
+
+    fn into_disc(self: Box<Self>) -> Discretization {
+        self.disc
+    }
+}
+
+/// Any model's owner kernels, bond forces buffered per bond (module docs).
+pub struct FamilyKernel<M: Model> {
+    disc: Discretization,
+    model: M,
+    linear: bool,
+    bond_force: Vec<[f64; 3]>,
+    /// Bonds ending at each point (CSR).
+    incoming_start: Vec<usize>,
+    incoming: Vec<u32>,
+    criterion: Option<Criterion>,
+    ratios: Vec<f64>,
+}
+
+impl<M: Model> FamilyKernel<M> {
+    /// Prepares the buffers; `linear` selects the linearised kernel.
+    pub fn new(disc: Discretization, model: M, linear: bool, criterion: Option<Criterion>) -> Self {
+        let n = disc.points.len();
+        let bonds = &disc.bonds;
+        let mut incoming_start = vec![0usize; n + 1];
+        for &j in &bonds.neighbour {
+            incoming_start[j as usize + 1] += 1;
+        }
+        for i in 0..n {
+            incoming_start[i + 1] += incoming_start[i];
+        }
+        let mut fill = incoming_start.clone();
+        let mut incoming = vec![0u32; bonds.len()];
+        for (b, &j) in bonds.neighbour.iter().enumerate() {
+            incoming[fill[j as usize]] = b as u32;
+            fill[j as usize] += 1;
+        }
+        let m = bonds.len();
+        FamilyKernel {
+            disc,
+            model,
+            linear,
+            bond_force: vec![[0.0; 3]; m],
+            incoming_start,
+            incoming,
+            ratios: if criterion.is_some() {
+                vec![0.0; m]
+            } else {
+                Vec::new()
+            },
+            criterion,
+        }
+    }
+
+    fn break_bonds(&mut self, u: &[[f64; 3]]) -> Breaks {
+        let Some(criterion) = &self.criterion else {
+            return Breaks::default();
+        };
+        criterion.ratios(&self.model, &self.disc, u, self.linear, &mut self.ratios);
+        let mut owners = Vec::new();
+        let mut breaks = Breaks::default();
+        let bonds = &mut self.disc.bonds;
+        for i in 0..self.disc.points.len() {
+            let mut any = false;
+            for b in bonds.offsets[i]..bonds.offsets[i + 1] {
+                if bonds.intact[b] && self.ratios[b] >= 1.0 {
+                    bonds.intact[b] = false;
+                    breaks.bonds += 1;
+                    any = true;
+                }
+            }
+            if any {
+                owners.push(i);
+            }
+        }
+        if !owners.is_empty() {
+            for i in self.model.refresh_owners(&self.disc, &owners) {
+                for b in self.disc.bonds.owned_by(i) {
+                    if self.disc.bonds.intact[b] {
+                        self.disc.bonds.intact[b] = false;
+                        breaks.bonds += 1;
+                    }
+                }
+            }
+        }
+        breaks
+    }
+}
+
+impl<M: Model> ForceField for FamilyKernel<M> {
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+        let (disc, model, linear) = (&self.disc, &self.model, self.linear);
+        split_at_offsets(&mut self.bond_force, &disc.bonds.offsets)
+            .into_par_iter()
+            .enumerate()
+            .for_each(|(i, f)| model.owner_forces(disc, i, u, linear, f));
+        let (bond_force, offsets) = (&self.bond_force, &disc.bonds.offsets);
+        let (start, incoming) = (&self.incoming_start, &self.incoming);
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(64)
+            .for_each(|(i, f)| {
+                let mut acc = [0.0; 3];
+                for bf in &bond_force[offsets[i]..offsets[i + 1]] {
+                    (0..3).for_each(|c| acc[c] += bf[c]);
+                }
+                for &b in &incoming[start[i]..start[i + 1]] {
+                    let bf = &bond_force[b as usize];
+                    (0..3).for_each(|c| acc[c] -= bf[c]);
+                }
+                *f = acc;
+            });
+        self.break_bonds(u)
+    }
+
+    fn strain_energy(&self, _u: &[[f64; 3]]) -> Option<f64> {
+        None
+    }
+
+    fn disc(&self) -> &Discretization {
+        &self.disc
+    }
+
+    fn into_disc(self: Box<Self>) -> Discretization {
+        self.disc
+    }
+}
+
+/// `F = −K u` with the assembled tangent on every degree of freedom.
+pub struct TangentKernel {
+    disc: Discretization,
+    dofs: DofMap,
+    pattern: Pattern,
+    stiffness: Stiffness,
+    transpose: Vec<usize>,
+    x: Vec<f64>,
+}
+
+impl TangentKernel {
+    /// Assembles `K` of `model` without constraints.
+    pub fn new<M: Model>(disc: Discretization, model: &M) -> Result<Self, crate::Error> {
+        let dofs = DofMap::new(&disc.points, disc.d, &[])?;
+        let pattern = Pattern::new(&disc, &dofs, model.coupling());
+        let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
+        let transpose = Stiffness::transpose_positions(&pattern);
+        let x = vec![0.0; dofs.n_free()];
+        Ok(TangentKernel {
+            disc,
+            dofs,
+            pattern,
+            stiffness,
+            transpose,
+            x,
+        })
+    }
+
+    /// Gershgorin bound per degree of freedom: `Σ_c |K_rc|` for each point and component.
+    pub fn row_sums(&self) -> Vec<[f64; 3]> {
+        row_sums(
+            &self.disc,
+            &self.dofs,
+            &self.pattern,
+            &self.stiffness,
+            &self.transpose,
+        )
+    }
+}
+
+/// `Σ_c |K_rc|` per point and component for a `K` on every degree of freedom.
+pub fn row_sums(
+    disc: &Discretization,
+    dofs: &DofMap,
+    pattern: &Pattern,
+    k: &Stiffness,
+    transpose: &[usize],
+) -> Vec<[f64; 3]> {
+    let mut out = vec![[0.0; 3]; disc.points.len()];
+    for (r, &(i, c)) in dofs.free_dofs.iter().enumerate() {
+        // Row r of K is column r of Kᵀ.
+        out[i as usize][c as usize] = (pattern.col_ptr[r]..pattern.col_ptr[r + 1])
+            .map(|q| k.values[transpose[q]].abs())
+            .sum();
+    }
+    out
+}
+
+impl ForceField for TangentKernel {
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+        for (r, &(i, c)) in self.dofs.free_dofs.iter().enumerate() {
+            self.x[r] = u[i as usize][c as usize];
+        }
+        let (p, k, t, x) = (&self.pattern, &self.stiffness, &self.transpose, &self.x);
+        let free_dofs = &self.dofs.free_dofs;
+        let d = self.disc.d;
+        out.par_iter_mut().enumerate().for_each(|(i, f)| {
+            *f = [0.0; 3];
+            for c in 0..d {
+                let r = i * d + c;
+                debug_assert_eq!(free_dofs[r], (i as u32, c as u8));
+                f[c] = -(p.col_ptr[r]..p.col_ptr[r + 1])
+                    .map(|q| k.values[t[q]] * x[p.row_idx[q]])
+                    .sum::<f64>();
+            }
+        });
+        Breaks::default()
+    }
+
+    fn strain_energy(&self, u: &[[f64; 3]]) -> Option<f64> {
+        let x: Vec<f64> = self
+            .dofs
+            .free_dofs
+            .iter()
+            .map(|&(i, c)| u[i as usize][c as usize])
+            .collect();
+        let kx = self.stiffness.mul(&self.pattern, &x);
+        Some(0.5 * x.iter().zip(&kx).map(|(a, b)| a * b).sum::<f64>())
+    }
+
+    fn disc(&self) -> &Discretization {
+        &self.disc
+    }
+
+    fn into_disc(self: Box<Self>) -> Discretization {
+        self.disc
+    }
+}

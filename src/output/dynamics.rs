@@ -1,0 +1,262 @@
+//! Outputs of an explicit run: the VTU series (`series.pvd`, one file every
+//! `output.every` steps and at `output.steps`, with displacement, velocity and
+//! damage), `history.csv` (energies, balance error, bonds broken, reactions),
+//! `probes.csv` (displacement, velocity and damage of each probe), the final
+//! state (`points.vtu`, `points.csv`) and `summary.json`; a progress bar with
+//! ETA on stderr for runs longer than a few seconds, silent when stderr is not
+//! a terminal. Everything goes through a staging directory (no partial result).
+
+use super::csv::{header, row};
+use super::{vtu, Plan, PointData, Staging};
+use crate::drivers::dynamics::{DynamicsSolution, Observer, Snapshot};
+use crate::error::{Error, NumericalError};
+use crate::scene::Scene;
+use indicatif::{ProgressBar, ProgressStyle};
+use std::fmt::Write;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Runs shorter than this show no progress bar.
+const QUIET_FOR: Duration = Duration::from_secs(2);
+
+/// Writes the series' files and shows progress while a run goes.
+pub struct DynamicsWriter {
+    dir: PathBuf,
+    entries: Vec<(f64, String)>,
+    bar: Option<ProgressBar>,
+    start: Instant,
+    terminal: bool,
+}
+
+impl DynamicsWriter {
+    /// Writes into `dir` (the staging directory).
+    pub fn new(dir: &Path) -> Self {
+        Self {
+            dir: dir.to_path_buf(),
+            entries: Vec::new(),
+            bar: None,
+            start: Instant::now(),
+            terminal: std::io::stderr().is_terminal(),
+        }
+    }
+
+    /// The `(time, file)` entries written; ends the progress bar.
+    pub fn finish(mut self) -> Vec<(f64, String)> {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+        }
+        self.entries
+    }
+}
+
+impl Observer for DynamicsWriter {
+    fn progress(&mut self, step: usize, steps: usize, time: f64, broken: usize) {
+        if !self.terminal || step % 16 != 0 || self.start.elapsed() < QUIET_FOR {
+            return;
+        }
+        let elapsed = self.start.elapsed();
+        let bar = self.bar.get_or_insert_with(|| {
+            let bar = ProgressBar::new(steps as u64);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:30}] step {pos}/{len}, ETA {eta} | {msg}",
+            ) {
+                bar.set_style(style.progress_chars("=> "));
+            }
+            bar.with_elapsed(elapsed)
+        });
+        bar.set_position(step as u64);
+        bar.set_message(format!("t = {time:.4e}, bonds broken {broken}"));
+    }
+
+    fn snapshot(&mut self, s: &Snapshot) -> Result<(), Error> {
+        let file = format!("step_{:06}.vtu", s.step);
+        vtu::write(
+            &self.dir.join(&file),
+            &PointData {
+                disc: s.disc,
+                u: s.u,
+                velocity: Some(s.v),
+                stress: None,
+                damage: Some(s.damage),
+            },
+        )?;
+        self.entries.push((s.time, file));
+        Ok(())
+    }
+}
+
+fn check_finite(solution: &DynamicsSolution) -> Result<(), Error> {
+    let finite = solution.records.iter().all(|r| {
+        [
+            r.time,
+            r.kinetic,
+            r.strain,
+            r.broken_energy,
+            r.damping,
+            r.external_work,
+            r.balance_error,
+            r.residual,
+        ]
+        .iter()
+        .chain(r.reactions.iter().flatten())
+        .chain(
+            r.probes
+                .iter()
+                .flat_map(|p| p.0.iter().chain(&p.1).chain([&p.2])),
+        )
+        .all(|v| v.is_finite())
+    });
+    if finite {
+        Ok(())
+    } else {
+        Err(NumericalError::NonFinite {
+            what: "the run's history (energies, reactions or probes)".into(),
+        }
+        .into())
+    }
+}
+
+fn write_history(path: &Path, s: &DynamicsSolution) -> Result<(), Error> {
+    let d = s.disc.d;
+    let mut t = String::from(
+        "step,time,kinetic,strain,broken_energy,damping,external_work,balance_error,broken_bonds,residual",
+    );
+    for name in &s.set_names {
+        let _ = write!(t, ",{}", header(d, &format!("reaction_{name}_")));
+    }
+    t.push('\n');
+    for r in &s.records {
+        let _ = write!(
+            t,
+            "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e}",
+            r.step,
+            r.time,
+            r.kinetic,
+            r.strain,
+            r.broken_energy,
+            r.damping,
+            r.external_work,
+            r.balance_error,
+            r.broken_bonds,
+            r.residual
+        );
+        for f in &r.reactions {
+            let _ = write!(t, ",{}", row(f, d));
+        }
+        t.push('\n');
+    }
+    super::write_file(path, &t)
+}
+
+fn write_probes(path: &Path, s: &DynamicsSolution, plan: &Plan) -> Result<(), Error> {
+    let d = s.disc.d;
+    let mut t = String::from("step,time");
+    for (name, _) in &plan.probes {
+        let _ = write!(
+            t,
+            ",{},{},{name}_damage",
+            header(d, &format!("{name}_u")),
+            header(d, &format!("{name}_v"))
+        );
+    }
+    t.push('\n');
+    for r in &s.records {
+        let _ = write!(t, "{},{:e}", r.step, r.time);
+        for (u, v, phi) in &r.probes {
+            let _ = write!(t, ",{},{},{phi:e}", row(u, d), row(v, d));
+        }
+        t.push('\n');
+    }
+    super::write_file(path, &t)
+}
+
+#[derive(serde::Serialize)]
+struct Summary<'a> {
+    scene: &'a str,
+    version: &'static str,
+    model: String,
+    method: String,
+    kernel: &'a str,
+    outcome: &'a crate::drivers::dynamics::Outcome,
+    points: usize,
+    bonds: usize,
+    steps: usize,
+    time_step: f64,
+    stable_time_step: Option<f64>,
+    end_time: f64,
+    timings: &'a crate::drivers::dynamics::DynamicsTimings,
+    total_seconds: f64,
+    bond_updates_per_second: f64,
+    threads: usize,
+    bonds_broken: usize,
+    max_balance_error: f64,
+    final_record: Option<&'a crate::drivers::dynamics::Record>,
+    loads: &'a [crate::assembly::loads::AppliedLoad],
+    log: &'a [String],
+}
+
+/// Writes the final state, the history, the probes, the series collection and
+/// the summary of an explicit run into the staging directory, then commits it.
+pub fn write(
+    staging: Staging,
+    scene: &Scene,
+    plan: &Plan,
+    solution: &DynamicsSolution,
+    series: &[(f64, String)],
+    total_seconds: f64,
+) -> Result<(), Error> {
+    check_finite(solution)?;
+    let tmp = staging.path();
+    let data = PointData {
+        disc: &solution.disc,
+        u: &solution.u,
+        velocity: Some(&solution.v),
+        stress: None,
+        damage: Some(&solution.damage),
+    };
+    let point_plan = Plan {
+        profiles: plan.profiles.clone(),
+        probes: Vec::new(),
+    };
+    super::write_points(tmp, scene, &point_plan, &data)?;
+    write_history(&tmp.join("history.csv"), solution)?;
+    if !plan.probes.is_empty() {
+        write_probes(&tmp.join("probes.csv"), solution, plan)?;
+    }
+    if !series.is_empty() {
+        vtu::write_collection(&tmp.join("series.pvd"), series)?;
+    }
+    let dy = scene.dynamics.as_ref().expect("a dynamics scene");
+    let summary = Summary {
+        scene: &scene.name,
+        version: env!("CARGO_PKG_VERSION"),
+        model: format!(
+            "{:?} {:?} {:?} horizons",
+            scene.model, scene.dimension, scene.horizons
+        ),
+        method: format!("{:?}", dy.method),
+        kernel: solution.kernel,
+        outcome: &solution.outcome,
+        points: solution.disc.points.len(),
+        bonds: solution.bonds,
+        steps: solution.steps,
+        time_step: solution.time_step,
+        stable_time_step: solution.stable_time_step,
+        end_time: solution.time,
+        timings: &solution.timings,
+        total_seconds,
+        bond_updates_per_second: solution.bond_updates_per_second,
+        threads: rayon::current_num_threads(),
+        bonds_broken: solution.records.last().map_or(0, |r| r.broken_bonds),
+        max_balance_error: solution.max_balance_error,
+        final_record: solution.records.last(),
+        loads: &solution.loads,
+        log: &solution.log,
+    };
+    let text = serde_json::to_string_pretty(&summary).map_err(|e| NumericalError::NonFinite {
+        what: format!("summary ({e})"),
+    })?;
+    super::write_file(&tmp.join("summary.json"), &text)?;
+    staging.commit()
+}
