@@ -65,15 +65,20 @@ pub trait ForceField: Send {
     }
 }
 
+/// The screen's margin: a pair is examined exactly when `num ≥ limit × den × SCREEN`.
+const SCREEN: f64 = 1.0 - 1e-12;
+
 /// Marks an entry's directed bond as absent.
 const NONE: u32 = u32::MAX;
 
-/// One point's view of a pair it shares bonds with (16 bytes: the only per-bond
+/// One point's view of a pair it shares bonds with (24 bytes: the only per-bond
 /// data read in the force loop; positions and displacements are per point).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Pair {
     /// `W`: force per unit stretch along the current bond direction.
     weight: f64,
+    /// `|ξ|` (stored: a square root is the costliest operation of the loop).
+    length: f64,
     /// Smallest limit of the pair's intact bonds, rounded down to `f32` (a
     /// screen; the exact comparison follows), ∞ when none may break.
     limit: f32,
@@ -184,12 +189,17 @@ impl PairKernel {
                 }
             })
             .collect();
-        let pairs = neighbours
-            .iter()
-            .map(|&nb| Pair {
-                weight: 0.0,
-                limit: f32::INFINITY,
-                neighbour: nb,
+        let pairs = (0..n)
+            .flat_map(|i| (start[i]..start[i + 1]).map(move |e| (i, e)))
+            .map(|(i, e)| {
+                let j = neighbours[e] as usize;
+                let d = crate::geometry::sub(&p.x[j], &p.x[i]);
+                Pair {
+                    weight: 0.0,
+                    length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
+                    limit: f32::INFINITY,
+                    neighbour: neighbours[e],
+                }
             })
             .collect();
         let mut kernel = PairKernel {
@@ -289,15 +299,28 @@ impl ForceField for PairKernel {
                 let mut acc = [0.0; 3];
                 let mut over = false;
                 for p in &pairs[start[i]..start[i + 1]] {
-                    let j = p.neighbour as usize;
-                    let (s, y, yl) = stretch(xi, &x[j], ui, &u[j]);
-                    over |= (s as f32) >= p.limit;
-                    if yl > 0.0 {
-                        let c = p.weight * s / yl;
-                        acc[0] += c * y[0];
-                        acc[1] += c * y[1];
-                        acc[2] += c * y[2];
-                    }
+                    // `stretch` written out with a single division: s = num/den,
+                    // force W s y/|y| = W num/(den |y|) y; the screen compares
+                    // num with limit × den, a little low so that no bond whose
+                    // exact stretch reaches its limit escapes it.
+                    let (xj, uj) = (&x[p.neighbour as usize], &u[p.neighbour as usize]);
+                    let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
+                    let e = [uj[0] - ui[0], uj[1] - ui[1], uj[2] - ui[2]];
+                    let y = [d[0] + e[0], d[1] + e[1], d[2] + e[2]];
+                    let l = p.length;
+                    let yl = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+                    let num = 2.0 * (d[0] * e[0] + d[1] * e[1] + d[2] * e[2])
+                        + (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+                    let den = (yl + l) * l;
+                    over |= num >= f64::from(p.limit) * den * SCREEN;
+                    let c = if yl > 0.0 {
+                        p.weight * num / (den * yl)
+                    } else {
+                        0.0
+                    };
+                    acc[0] += c * y[0];
+                    acc[1] += c * y[1];
+                    acc[2] += c * y[2];
                 }
                 *f = acc;
                 *flag = over;
