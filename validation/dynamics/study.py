@@ -1,0 +1,358 @@
+"""Explicit-dynamics benchmarks of dhpd (issue 9): reflection at a horizon jump,
+wave speed, dynamic relaxation against the implicit solve, throughput.
+
+Usage: python3 validation/dynamics/study.py [reflection|waves|relaxation|throughput|all]
+Env DHPD: the dhpd binary (default target/release/dhpd). Writes the scenes it
+runs into scenes/, numbers into results/, figures next to this file.
+"""
+
+import csv
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(os.path.dirname(HERE))
+DHPD = os.environ.get("DHPD", os.path.join(ROOT, "target", "release", "dhpd"))
+SCENES = os.path.join(HERE, "scenes")
+RESULTS = os.path.join(HERE, "results")
+os.makedirs(SCENES, exist_ok=True)
+os.makedirs(RESULTS, exist_ok=True)
+WORK = tempfile.mkdtemp(prefix="dhpd-dyn-")
+
+
+def run(name, text, threads=None, keep=True):
+    """Writes scenes/NAME.toml (when keep) and runs it; returns the output dir."""
+    path = os.path.join(SCENES if keep else WORK, name + ".toml")
+    with open(path, "w") as f:
+        f.write(text)
+    out = os.path.join(WORK, name)
+    env = dict(os.environ)
+    if threads:
+        env["RAYON_NUM_THREADS"] = str(threads)
+    subprocess.run([DHPD, "run", path, "--out", out], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+    return out
+
+
+def points(out):
+    with open(os.path.join(out, "points.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def summary(out):
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+# ---------------------------------------------------------------- reflection
+FINE = 1.0 / 240.0  # close to the paper's 4.19e-3 m, and a whole number per metre
+
+
+def jump_scene(horizons, ratio, width, end_time, every=None):
+    """1D bar, E = rho = 1 (c = 1): fine part [0, Lf], coarse part [Lf, 2 Lf]
+    with ratio x the spacing; a pulse at Lf/2 splits in two halves; the
+    right-going one crosses the jump at t = Lf/2."""
+    lf = 16.0 * width
+    lf = math.ceil(lf / (ratio * FINE)) * ratio * FINE
+    text = f"""# Reflection at a horizon jump (000 Sec. 4, formulation Sec. 9): 1D bar,
+# E = rho = 1, fine spacing {FINE:.6g} m on [0, {lf:.6g}], {ratio} x coarser beyond,
+# delta = 3.015 x spacing, Gaussian pulse of width {width} m at the middle of the fine part.
+[model]
+dimension = "1d"
+horizons = "{horizons}"
+[materials.m]
+youngs_modulus = 1.0
+density = 1.0
+[[regions]]
+material = "m"
+spacing = {FINE!r}
+box = {{ min = [0.0], max = [{lf!r}] }}
+[[regions]]
+material = "m"
+spacing = {ratio * FINE!r}
+box = {{ min = [{lf!r}], max = [{2 * lf!r}] }}
+[[initial_conditions]]
+gaussian = {{ center = [{lf / 2!r}], width = {width}, amplitude = [0.002] }}
+[dynamics]
+end_time = {end_time!r}
+record_every = 100000
+"""
+    return text, lf
+
+
+def reflection():
+    rows = []
+    for ratio in (2, 10):
+        for width in (0.1, 0.2, 0.3, 0.5):
+            for horizons in ("dual", "traditional", "constant"):
+                _, lf = jump_scene(horizons, ratio, width, 1.0)
+                t_end = 0.75 * lf
+                text, _ = jump_scene(horizons, ratio, width, t_end)
+                name = f"jump_{horizons}_r{ratio}_w{width}"
+                out = run(name, text, keep=(width == 0.3))
+                pts = points(out)
+                window = [abs(float(p["u_x"])) for p in pts
+                          if 0.5 * lf < float(p["x"]) < 0.95 * lf]
+                transmitted = max(abs(float(p["u_x"])) for p in pts if float(p["x"]) > lf)
+                s = summary(out)
+                rows.append(dict(ratio=ratio, width=width, horizons=horizons,
+                                 reflection_percent=100 * max(window) / 0.001,
+                                 transmitted_percent=100 * transmitted / 0.001,
+                                 balance_error=s["max_balance_error"],
+                                 points=s["points"], steps=s["steps"]))
+                print(rows[-1])
+    with open(os.path.join(RESULTS, "reflection.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    # Snapshots of the ratio-10, width-0.3 case.
+    snaps = {}
+    for horizons in ("dual", "traditional"):
+        _, lf = jump_scene(horizons, 10, 0.3, 1.0)
+        for frac in (0.0, 0.35, 0.5, 0.6, 0.75):
+            t = max(frac * lf, 1e-9)
+            text, _ = jump_scene(horizons, 10, 0.3, t)
+            out = run(f"snap_{horizons}_{frac}", text, keep=False)
+            pts = points(out)
+            snaps[(horizons, frac)] = ([float(p["x"]) for p in pts],
+                                       [float(p["u_x"]) for p in pts])
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
+    for ax, horizons in zip(axes, ("dual", "traditional")):
+        for k, frac in enumerate((0.0, 0.35, 0.5, 0.6, 0.75)):
+            x, u = snaps[(horizons, frac)]
+            ax.plot(x, [v + 0.0 * k for v in u], lw=1, label=f"t = {frac * lf:.2f} s")
+        ax.axvline(lf, color="k", ls=":", lw=1)
+        ax.set_title(f"{'DH-PD' if horizons == 'dual' else 'traditional variable horizon'}: "
+                     "spacing ×10 at the dotted line")
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("u [m]")
+        ax.legend(fontsize=7)
+        ax.set_ylim(-2.5e-4, 2.1e-3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "reflection_waves.png"), dpi=110)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for ratio, marker in ((2, "o"), (10, "s")):
+        for horizons, color in (("dual", "C0"), ("traditional", "C3"), ("constant", "C2")):
+            sel = [r for r in rows if r["ratio"] == ratio and r["horizons"] == horizons]
+            ax.semilogy([r["width"] for r in sel], [r["reflection_percent"] for r in sel],
+                        marker=marker, color=color, ls="-" if ratio == 10 else "--",
+                        label=f"{horizons}, ratio {ratio}")
+    ax.axhline(3.17, color="k", ls=":", lw=1, label="000: < 3.17 %")
+    ax.set_xlabel("pulse width [m] (coarse horizon: 0.0105 m × ratio)")
+    ax.set_ylabel("reflected amplitude [% of incident]")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "reflection.png"), dpi=110)
+
+
+# ---------------------------------------------------------------- wave speed
+def peak_time(out, column, before):
+    """Time of the first pulse's peak at a probe (samples up to `before` s)."""
+    with open(os.path.join(out, "probes.csv")) as f:
+        rows = list(csv.DictReader(f))
+    t = [float(r["time"]) for r in rows]
+    y = [abs(float(r[column])) for r in rows]
+    k = max((i for i in range(1, len(y) - 1) if t[i] < before), key=lambda i: y[i])
+    denom = y[k - 1] - 2 * y[k] + y[k + 1]
+    return t[k] + 0.5 * (t[k + 1] - t[k]) * (y[k - 1] - y[k + 1]) / denom, (t, y)
+
+
+def waves():
+    rows = []
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4))
+    # 1D bar: E = 4, rho = 1 -> c = 2.
+    for width in (0.05, 0.1, 0.2):
+        text = f"""# Wave speed in a 1D bar: E = 4, rho = 1, c = sqrt(E/rho) = 2 m/s; Gaussian
+# pulse of width {width} m at x = 0.5; probes at 1.0, 1.5, 2.0.
+[model]
+dimension = "1d"
+[materials.m]
+youngs_modulus = 4.0
+density = 1.0
+[[regions]]
+material = "m"
+spacing = 0.005
+box = {{ min = [0.0], max = [3.0] }}
+[[initial_conditions]]
+gaussian = {{ center = [0.5], width = {width}, amplitude = [1e-6] }}
+[dynamics]
+end_time = 0.9
+[output]
+probes = [ {{ name = "a", at = [1.0025] }}, {{ name = "b", at = [1.5025] }}, {{ name = "c", at = [2.0025] }} ]
+"""
+        out = run(f"wave_bar_w{width}", text, keep=(width == 0.1))
+        times = []
+        for probe, x in (("a", 1.0025), ("b", 1.5025), ("c", 2.0025)):
+            tp, (t, y) = peak_time(out, f"{probe}_ux", (x - 0.5) / 2.0 + 0.2)
+            times.append((x, tp))
+            if width == 0.1:
+                axes[0].plot(t, y, label=f"probe at x = {x:.4f} m")
+        # Speed from the slope of arrival time against distance (start-up free).
+        (x0, t0), (_, _), (x2, t2) = times
+        c = (x2 - x0) / (t2 - t0)
+        rows.append(dict(case="1d_bar", width=width, delta=0.015, reference=2.0, measured=c,
+                         error_percent=100 * (c / 2.0 - 1)))
+        print(rows[-1])
+    axes[0].set_title("1D bar, pulse width 0.1 m: |u| at three probes")
+    axes[0].set_xlabel("t [s]")
+    axes[0].legend(fontsize=8)
+    # 2D plane-stress plate, plane pulse along x: c_P = sqrt(E / (rho (1 - nu^2))), nu = 1/3.
+    cp = math.sqrt(1.0 / (1.0 - 1.0 / 9.0))
+    for width in (0.03, 0.06):
+        text = f"""# P-wave speed in a 2D plane-stress plate (bond-based, nu = 1/3): E = rho = 1,
+# c_P = sqrt(E/(rho (1 - nu^2))) = {cp:.6f} m/s; plane Gaussian pulse (u_x) of width
+# {width} m at x = 0.15; probes on the centre line (free edges 0.3 m away: their
+# waves reach it after 0.49 s, after the run).
+[model]
+dimension = "plane_stress"
+[materials.m]
+youngs_modulus = 1.0
+density = 1.0
+[[regions]]
+material = "m"
+spacing = 0.0025
+box = {{ min = [0.0, 0.0], max = [0.6, 0.6] }}
+[[initial_conditions]]
+gaussian = {{ center = [0.15], width = {width}, amplitude = [1e-6, 0.0] }}
+[dynamics]
+end_time = 0.33
+[output]
+vtu = false
+points_csv = false
+probes = [ {{ name = "a", at = [0.25125, 0.30125] }}, {{ name = "b", at = [0.35125, 0.30125] }}, {{ name = "c", at = [0.45125, 0.30125] }} ]
+"""
+        out = run(f"wave_plate_w{width}", text, keep=(width == 0.06))
+        times = []
+        for probe, x in (("a", 0.25125), ("b", 0.35125), ("c", 0.45125)):
+            tp, (t, y) = peak_time(out, f"{probe}_ux", 1.0)
+            times.append((x, tp))
+            if width == 0.06:
+                axes[1].plot(t, y, label=f"probe at x = {x:.3f} m")
+        (x0, t0), _, (x2, t2) = times
+        c = (x2 - x0) / (t2 - t0)
+        rows.append(dict(case="2d_plane_stress_plate", width=width, delta=0.0075375,
+                         reference=cp, measured=c, error_percent=100 * (c / cp - 1)))
+        print(rows[-1])
+    axes[1].set_title("plane-stress plate, plane pulse 0.06 m: |u_x|")
+    axes[1].set_xlabel("t [s]")
+    axes[1].legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "wave_speed.png"), dpi=110)
+    with open(os.path.join(RESULTS, "wave_speed.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+# ---------------------------------------------------------------- relaxation
+def relaxation():
+    rows = []
+    for model, nu in (("bond_based", ""), ("shear", "poisson_ratio = 0.3\n")):
+        for spacing in (0.02, 0.01):
+            body = f"""[model]
+dimension = "plane_stress"
+kind = "{model}"
+[materials.m]
+youngs_modulus = 3.0e10
+{nu}[[regions]]
+material = "m"
+spacing = {spacing}
+box = {{ min = [0.0, 0.0], max = [1.0, 0.5] }}
+[[holes]]
+center = [0.5, 0.25]
+radius = 0.1
+[[boundary]]
+name = "left"
+box = {{ min = [0.0, 0.0], max = [{3 * spacing}, 0.5] }}
+displacement = {{ x = 0.0, y = 0.0 }}
+[[loads]]
+name = "pull"
+kind = "traction"
+face = "+x"
+value = [1.0e6, 0.0]
+[output]
+points_csv = true
+vtu = false
+"""
+            tag = f"{model}_h{spacing}"
+            static = run(f"hole_static_{tag}", "# Plate with a hole, implicit solve.\n" + body,
+                         keep=(spacing == 0.01))
+            results = {}
+            for kernel in ("linearised", "nonlinear"):
+                text = (f"# Plate with a hole by adaptive dynamic relaxation ({kernel} kernel).\n"
+                        + body + f"[dynamics]\nmethod = \"relaxation\"\nkernel = \"{kernel}\"\n"
+                        "steps = 2000000\ntolerance = 1e-10\nrecord_every = 1000\n")
+                results[kernel] = run(f"hole_relaxation_{kernel}_{tag}", text,
+                                      keep=(spacing == 0.01))
+            ps = points(static)
+            umax = max(max(abs(float(p["u_x"])), abs(float(p["u_y"]))) for p in ps)
+            with open(os.path.join(static, "summary.json")) as f:
+                st = json.load(f)
+            t_static = st["total_seconds"] if "total_seconds" in st else float("nan")
+            for kernel, out in results.items():
+                pr = points(out)
+                diff = max(max(abs(float(a["u_x"]) - float(b["u_x"])),
+                               abs(float(a["u_y"]) - float(b["u_y"]))) for a, b in zip(ps, pr))
+                s = summary(out)
+                rows.append(dict(model=model, spacing=spacing, points=s["points"], kernel=kernel,
+                                 steps=s["steps"], outcome=s["outcome"]["kind"],
+                                 max_diff_relative=diff / umax,
+                                 relaxation_seconds=s["total_seconds"],
+                                 implicit_seconds=t_static,
+                                 ratio=s["total_seconds"] / t_static))
+                print(rows[-1])
+    with open(os.path.join(RESULTS, "relaxation.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+# ---------------------------------------------------------------- throughput
+def throughput(repeats=5):
+    path = os.path.join(SCENES, "throughput_box_3d.toml")
+    rows = []
+    for threads in (1, 2):
+        samples = []
+        for _ in range(repeats):
+            env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+            out = os.path.join(WORK, f"tp{threads}")
+            subprocess.run([DHPD, "run", path, "--out", out], check=True, env=env,
+                           stdout=subprocess.DEVNULL)
+            s = summary(out)
+            samples.append((s["bond_updates_per_second"], s["timings"]["integration"],
+                            s["timings"]["forces"], s["bonds"], s["steps"]))
+        med = statistics.median(x[0] for x in samples)
+        step = statistics.median(x[1] for x in samples) / samples[0][4]
+        rows.append(dict(threads=threads, bonds=samples[0][3], steps=samples[0][4],
+                         median_bond_updates_per_second=med,
+                         median_step_seconds=step,
+                         force_share=statistics.median(x[2] / x[1] for x in samples),
+                         runs=repeats))
+        print(rows[-1])
+    rows.append(dict(threads="2/1", bonds="", steps="",
+                     median_bond_updates_per_second=rows[1]["median_bond_updates_per_second"]
+                     / rows[0]["median_bond_updates_per_second"],
+                     median_step_seconds="", force_share="", runs=""))
+    with open(os.path.join(RESULTS, "throughput.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+if __name__ == "__main__":
+    what = sys.argv[1] if len(sys.argv) > 1 else "all"
+    for name, fn in (("reflection", reflection), ("waves", waves),
+                     ("relaxation", relaxation), ("throughput", throughput)):
+        if what in (name, "all"):
+            fn()
