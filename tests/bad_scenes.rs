@@ -49,6 +49,9 @@ const LEFT_PULL: &str = "\n[[loads]]\nname = \"pull_left\"\nkind = \"traction\"\
 /// A quasi-static section (for the fracture cases).
 const QS: &str = "\n[quasi_static]\nmax_load_factor = 1.0\n";
 
+/// A dynamics section (for the explicit-dynamics cases).
+const DY: &str = "\n[dynamics]\nsteps = 5\n";
+
 /// Two valid rows (x y volume) to the right of the plate, touching nothing else.
 const ROWS_OK: &str = "0.30 0.05 1e-6\n0.31 0.05 1e-6\n";
 
@@ -259,8 +262,33 @@ const CASES: &[Case] = &[
     c("unknown_shear_energy_counting", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[fracture]\nshear_energy = \"both\"\n")], None, 2, &["fracture.shear_energy", "both"]),
     c("no_fail_box_with_three_coordinates", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[[fracture.no_fail]]\nbox = { min = [0.0, 0.0, 0.0], max = [0.1, 0.1] }\n")], None, 2, &["fracture.no_fail[0].box.min", "needs 2"]),
     c("output_every_zero", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[output]\nevery = 0\n")], None, 2, &["output.every"]),
-    c("output_every_in_a_static_scene", &[Add("\n[output]\nevery = 5\n")], None, 2, &["output.every", "fracture runs"]),
+    c("output_every_in_a_static_scene", &[Add("\n[output]\nevery = 5\n")], None, 2, &["output.every", "fracture and dynamics runs"]),
     c("refactor_iterations_in_a_static_scene", &[Add("\n[solver]\nrefactor_iterations = 5\n")], None, 2, &["solver.refactor_iterations", "fracture runs"]),
+    // --- explicit dynamics ---
+    c("density_in_a_static_scene", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0")], None, 2, &["materials.soft.density", "[dynamics]"]),
+    c("dynamics_without_density", &[Add(DY)], None, 2, &["materials.soft.density", "density"]),
+    c("dynamics_without_length", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsafety_factor = 0.5\n")], None, 2, &["dynamics", "steps or end_time"]),
+    c("dynamics_steps_and_end_time", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nend_time = 1.0\n")], None, 2, &["dynamics.end_time", "not both"]),
+    c("dynamics_time_step_above_stable", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ntime_step = 1.0\n")], None, 2, &["dynamics.time_step", "stable time step"]),
+    c("dynamics_forced_unstable_diverges", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\n")], None, 3, &["diverged", "point"]),
+    c("dynamics_safety_factor_above_one", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nsafety_factor = 1.5\n")], None, 2, &["dynamics.safety_factor", "(0, 1]"]),
+    c("dynamics_record_every_zero", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nrecord_every = 0\n")], None, 2, &["dynamics.record_every"]),
+    c("dynamics_negative_damping", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = -1.0\n")], None, 2, &["dynamics.damping"]),
+    c("dynamics_and_quasi_static", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0\nfracture_energy = 100.0"), Add(QS), Add(DY)], None, 2, &["dynamics", "one driver"]),
+    c("velocity_in_a_static_scene", &[Rep("displacement = { x = 0.0, y = 0.0 }", "velocity = { x = 0.0, y = 0.0 }")], None, 2, &["boundary[0].velocity", "[dynamics]"]),
+    c("velocity_and_displacement", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Rep("displacement = { x = 0.0, y = 0.0 }", "displacement = { x = 0.0 }\nvelocity = { y = 0.0 }"), Add(DY)], None, 2, &["boundary[0].velocity", "not both"]),
+    c("ramp_without_duration", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Rep("displacement = { x = 0.0, y = 0.0 }", "displacement = { x = 0.0, y = 0.0 }\ntime_function = { kind = \"ramp\" }"), Add(DY)], None, 2, &["boundary[0].time_function.duration"]),
+    c("table_times_not_increasing", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Rep("value = [1.0e6, 0.0]", "value = [1.0e6, 0.0]\ntime_function = { kind = \"table\", times = [0.0, 2.0, 1.0], values = [0.0, 1.0, 1.0] }"), Add(DY)], None, 2, &["loads[0].time_function.times[2]", "increasing"]),
+    c("time_function_in_a_static_scene", &[Rep("value = [1.0e6, 0.0]", "value = [1.0e6, 0.0]\ntime_function = { kind = \"constant\" }")], None, 2, &["loads[0].time_function", "[dynamics]"]),
+    c("initial_condition_sets_nothing", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\nbox = { min = [0.0, 0.0], max = [0.1, 0.1] }\n")], None, 2, &["initial_conditions[0]", "sets nothing"]),
+    c("gaussian_amplitude_wrong_length", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\ngaussian = { center = [0.1], width = 0.02, amplitude = [1e-6] }\n")], None, 2, &["initial_conditions[0].gaussian.amplitude", "give 2"]),
+    c("initial_conditions_in_a_static_scene", &[Add("\n[[initial_conditions]]\nvelocity = { x = 1.0 }\n")], None, 2, &["initial_conditions", "[dynamics]"]),
+    c("relaxation_with_density", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 100\n")], None, 2, &["materials.soft.density", "fictitious"]),
+    c("relaxation_with_time_step", &[Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 100\ntime_step = 1e-6\n")], None, 2, &["dynamics.time_step", "verlet"]),
+    c("relaxation_with_fracture", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 100\n")], None, 2, &["dynamics.method", "breaks no bond"]),
+    c("linearised_kernel_with_fracture", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0\nfracture_energy = 100.0"), Add("\n[dynamics]\nsteps = 5\nkernel = \"linearised\"\n")], None, 2, &["dynamics.kernel", "nonlinear"]),
+    c("traditional_horizons_in_a_static_scene", &[Rep("dimension = \"plane_stress\"", "dimension = \"plane_stress\"\nhorizons = \"traditional\"")], None, 2, &["model.horizons", "explicit dynamics"]),
+    c("refactor_iterations_in_dynamics", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[solver]\nrefactor_iterations = 5\n")], None, 2, &["solver.refactor_iterations", "quasi-static"]),
 ];
 /// A per-case temporary directory, removed on drop.
 struct TempDir(PathBuf);

@@ -502,10 +502,6 @@ impl Scene {
             for (key, present) in [
                 ("output.every", output.every.is_some()),
                 ("output.steps", !output.steps.is_empty()),
-                (
-                    "solver.refactor_iterations",
-                    spec.solver.refactor_iterations.is_some(),
-                ),
             ] {
                 if present {
                     return Err(InputError::new(
@@ -514,6 +510,12 @@ impl Scene {
                          or [dynamics] section)",
                     ));
                 }
+            }
+            if spec.solver.refactor_iterations.is_some() {
+                return Err(InputError::new(
+                    "solver.refactor_iterations",
+                    "applies to fracture runs only (add a [quasi_static] section)",
+                ));
             }
         }
         if spec.solver.refactor_iterations == Some(0) {
