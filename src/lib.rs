@@ -14,13 +14,16 @@
 //!            ─► discretization::Discretization (points, bonds)
 //!            ─► model (bond kernels: force and tangent)
 //!            ─► assembly (pattern once, values in parallel) ─► solve::pipeline (faer)
-//!            ─► drivers::static_solve | drivers::quasi_static (+ damage)
+//!            ─► drivers::static_solve | drivers::quasi_static (+ damage) | drivers::dynamics
 //!            ─► output (VTU and .pvd series, CSV, JSON, Matrix Market)
 //! ```
 //!
 //! A scene with a `[quasi_static]` section and a fracture parameter per
 //! material runs [`drivers::quasi_static::run`]: the prescribed displacements
 //! are scaled by a load factor and bonds break by the criteria of [`damage`].
+//! A scene with `[dynamics]` runs [`drivers::dynamics::run`]: explicit velocity
+//! Verlet (or dynamic relaxation) on the same kernels, breaking bonds by the
+//! same criteria.
 //!
 //! ```
 //! let scene = dhpd::scene::parse_spec(r#"
