@@ -4,17 +4,20 @@
 //!
 //! Three force fields:
 //!
-//! - [`PairKernel`] (bond-based): each point gathers over the distinct points it
-//!   shares a bond with, in either direction. Bond `i→j` puts `+w_ij s n` on `i`
-//!   and bond `j→i` puts `−w_ji s n_ji = +w_ji s n` on `i` (formulation Sec. 2-3):
-//!   the two bonds of a pair share the stretch `s` and direction `n`, so the pair
-//!   acts on `i` with `W s n`, `W = w_ij + w_ji` (each term only while its bond is
-//!   intact; `w = C_owner V_i V_j ν`). Every point writes only its own force.
-//!   The stretch is `s = (2 ξ·η + η·η) / ((|ξ+η| + |ξ|) |ξ|)`, which equals
-//!   `(|ξ+η| − |ξ|)/|ξ|` without its cancellation at small strain, and is
-//!   bitwise the same from both ends of a pair. With `traditional` horizons a
+//! - [`PairKernel`] (bond-based), pair by pair. Bond `i→j` puts `+w_ij s n` on
+//!   `i` and bond `j→i` puts `−w_ji s n_ji = +w_ji s n` on `i` (formulation Sec.
+//!   2-3): the two bonds of a pair share the stretch `s` and direction `n`, so the
+//!   pair acts on `i` with `W s n` and on `j` with `−W s n`, `W = w_ij + w_ji`
+//!   (each term only while its bond is intact; `w = C_owner V_i V_j ν`). Each pair
+//!   is evaluated once, in the row of its smaller index, and its force added to
+//!   both points in the buffer of a fixed block of rows (no two threads write the
+//!   same memory); the buffers are summed in a fixed order, so the result does
+//!   not depend on the number of threads. The stretch is
+//!   `s = (2 ξ·η + η·η) / ((|ξ+η| + |ξ|) |ξ|)`, equal to `(|ξ+η| − |ξ|)/|ξ|`
+//!   without its cancellation at small strain. With `traditional` horizons a
 //!   point feels only the bonds in its own horizon, `W = 2 w_ij` (the
-//!   constant-horizon micromodulus; ghost forces where horizons differ).
+//!   constant-horizon micromodulus; ghost forces where horizons differ), and
+//!   gathers over them.
 //! - [`FamilyKernel`] (any model, here the shear model): each owner's bond forces
 //!   ([`Model::owner_forces`], nonlinear with the polar rotation) into a per-bond
 //!   buffer, then each point sums its own bonds and subtracts the bonds ending at it.
@@ -71,8 +74,12 @@ const SCREEN: f64 = 1.0 - 1e-12;
 /// Marks an entry's directed bond as absent.
 const NONE: u32 = u32::MAX;
 
-/// One point's view of a pair it shares bonds with (24 bytes: the only per-bond
-/// data read in the force loop; positions and displacements are per point).
+/// Number of force buffers of the dual-horizon pair loop, fixed so that the
+/// sums (and so the results) do not depend on the number of threads.
+const BLOCKS: usize = 8;
+
+/// One pair as its row sees it (24 bytes: the only per-bond data read in the
+/// force loop; positions and displacements are per point and stay in cache).
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct Pair {
     /// `W`: force per unit stretch along the current bond direction.
@@ -86,21 +93,28 @@ struct Pair {
     neighbour: u32,
 }
 
-/// The bond-based model gathered per point (module docs).
+/// A contiguous range of rows and the forces they produce (dual horizons).
+struct Block {
+    rows: std::ops::Range<usize>,
+    force: Vec<[f64; 3]>,
+    flagged: Vec<u32>,
+}
+
+/// The bond-based model, pair by pair (module docs).
 pub struct PairKernel {
     disc: Discretization,
     start: Vec<usize>,
     pairs: Vec<Pair>,
     /// Per entry: the bond owned by the row's point, or [`NONE`].
     owned: Vec<u32>,
-    /// Per entry: the bond owned by the neighbour, ending at the row's point, or [`NONE`].
+    /// Per entry: the bond owned by the other point, ending at the row's point, or [`NONE`].
     incoming: Vec<u32>,
-    /// Per entry: the index of the neighbour's entry for this point, or [`NONE`].
-    mirror: Vec<u32>,
     /// `w_b` of every directed bond.
     bond_weight: Vec<f64>,
     criterion: Option<Criterion>,
     traditional: bool,
+    /// Dual horizons: the blocks of rows. Traditional: one flag per row.
+    blocks: Vec<Block>,
     flagged: Vec<bool>,
 }
 
@@ -117,6 +131,34 @@ fn stretch(xi: &[f64; 3], xj: &[f64; 3], ui: &[f64; 3], uj: &[f64; 3]) -> (f64, 
     ((2.0 * de + ee) / ((yl + l) * l), y, yl)
 }
 
+/// The force coefficient `c` (the pair's force on the row's point is `c y`) and
+/// whether the pair passes the breakage screen (module docs): `stretch` written
+/// out with one division, `s = num/den`, `W s y/|y| = W num/(den |y|) y`.
+#[inline(always)]
+fn pair_force(
+    p: &Pair,
+    xi: &[f64; 3],
+    xj: &[f64; 3],
+    ui: &[f64; 3],
+    uj: &[f64; 3],
+) -> (f64, [f64; 3], bool) {
+    let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
+    let e = [uj[0] - ui[0], uj[1] - ui[1], uj[2] - ui[2]];
+    let y = [d[0] + e[0], d[1] + e[1], d[2] + e[2]];
+    let l = p.length;
+    let yl = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
+    let num =
+        2.0 * (d[0] * e[0] + d[1] * e[1] + d[2] * e[2]) + (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    let den = (yl + l) * l;
+    let over = num >= f64::from(p.limit) * den * SCREEN;
+    let c = if yl > 0.0 {
+        p.weight * num / (den * yl)
+    } else {
+        0.0
+    };
+    (c, y, over)
+}
+
 fn round_down(v: f64) -> f32 {
     let r = v as f32;
     if (r as f64) > v {
@@ -127,7 +169,10 @@ fn round_down(v: f64) -> f32 {
 }
 
 impl PairKernel {
-    /// Gathers the bonds of `disc` per point; `criterion` breaks bonds when given.
+    /// Gathers the bonds of `disc` into pairs; `criterion` breaks bonds when
+    /// given. Dual horizons: one entry per pair of points sharing a bond in
+    /// either direction, in the row of the smaller index; traditional: one
+    /// entry per owned bond, in its owner's row.
     pub fn new(
         disc: Discretization,
         model: &BondBased,
@@ -145,25 +190,27 @@ impl PairKernel {
                     model.micromodulus[i] * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
             }
         }
-        // (row, neighbour, owned?, bond), sorted by row then neighbour.
-        let mut items: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(2 * bonds.len());
+        // (row, other point, owned by the row's point?, bond), sorted.
+        let mut items: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(bonds.len());
         for i in 0..n {
             for b in bonds.owned_by(i) {
                 let j = bonds.neighbour[b];
-                items.push((i as u32, j, true, b as u32));
-                if !traditional {
-                    items.push((j, i as u32, false, b as u32));
-                }
+                let (row, other) = if traditional || (i as u32) < j {
+                    (i as u32, j)
+                } else {
+                    (j, i as u32)
+                };
+                items.push((row, other, row == i as u32, b as u32));
             }
         }
         items.par_sort_unstable_by_key(|t| (t.0, t.1, !t.2));
         let mut start = vec![0usize; n + 1];
-        let (mut neighbours, mut owned, mut incoming) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut pairs, mut owned, mut incoming) = (Vec::new(), Vec::new(), Vec::new());
         let mut k = 0;
         while k < items.len() {
-            let (row, nb) = (items[k].0, items[k].1);
+            let (row, other) = (items[k].0, items[k].1);
             let (mut o, mut inc) = (NONE, NONE);
-            while k < items.len() && items[k].0 == row && items[k].1 == nb {
+            while k < items.len() && items[k].0 == row && items[k].1 == other {
                 if items[k].2 {
                     o = items[k].3;
                 } else {
@@ -172,49 +219,50 @@ impl PairKernel {
                 k += 1;
             }
             start[row as usize + 1] += 1;
-            neighbours.push(nb);
+            let d = crate::geometry::sub(&p.x[other as usize], &p.x[row as usize]);
+            pairs.push(Pair {
+                weight: 0.0,
+                length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
+                limit: f32::INFINITY,
+                neighbour: other,
+            });
             owned.push(o);
             incoming.push(inc);
         }
         for i in 0..n {
             start[i + 1] += start[i];
         }
-        let mirror = (0..n)
-            .flat_map(|i| (start[i]..start[i + 1]).map(move |e| (i, e)))
-            .map(|(i, e)| {
-                let j = neighbours[e] as usize;
-                match neighbours[start[j]..start[j + 1]].binary_search(&(i as u32)) {
-                    Ok(pos) if !traditional => (start[j] + pos) as u32,
-                    _ => NONE,
+        let blocks = if traditional {
+            Vec::new()
+        } else {
+            // Contiguous rows holding about the same number of pairs each.
+            let per_block = pairs.len().div_ceil(BLOCKS).max(1);
+            let mut blocks = Vec::new();
+            let mut first = 0;
+            for i in 0..n {
+                if start[i + 1] - start[first] >= per_block || i + 1 == n {
+                    blocks.push(Block {
+                        rows: first..i + 1,
+                        force: vec![[0.0; 3]; n],
+                        flagged: Vec::new(),
+                    });
+                    first = i + 1;
                 }
-            })
-            .collect();
-        let pairs = (0..n)
-            .flat_map(|i| (start[i]..start[i + 1]).map(move |e| (i, e)))
-            .map(|(i, e)| {
-                let j = neighbours[e] as usize;
-                let d = crate::geometry::sub(&p.x[j], &p.x[i]);
-                Pair {
-                    weight: 0.0,
-                    length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
-                    limit: f32::INFINITY,
-                    neighbour: neighbours[e],
-                }
-            })
-            .collect();
+            }
+            blocks
+        };
         let mut kernel = PairKernel {
             disc,
             start,
             pairs,
             owned,
             incoming,
-            mirror,
             bond_weight,
-            criterion,
+            criterion: None,
             traditional,
-            flagged: vec![false; n],
+            blocks,
+            flagged: vec![false; if traditional { n } else { 0 }],
         };
-        let criterion = kernel.criterion.take();
         for i in 0..n {
             for e in kernel.start[i]..kernel.start[i + 1] {
                 kernel.refresh(criterion.as_ref(), i, e);
@@ -241,17 +289,14 @@ impl PairKernel {
         self.pairs[e].limit = round_down(limit);
     }
 
-    /// Breaks the bonds of the flagged rows that reached their limit (exact
-    /// comparison); returns what broke.
-    fn break_flagged(&mut self, u: &[[f64; 3]]) -> Breaks {
+    /// Breaks the bonds of the rows that passed the screen whose exact stretch
+    /// reached their limit; returns what broke.
+    fn break_rows(&mut self, rows: &[usize], u: &[[f64; 3]]) -> Breaks {
         let mut breaks = Breaks::default();
         let Some(criterion) = self.criterion.take() else {
             return breaks;
         };
-        for i in 0..self.flagged.len() {
-            if !std::mem::take(&mut self.flagged[i]) {
-                continue;
-            }
+        for &i in rows {
             for e in self.start[i]..self.start[i + 1] {
                 let j = self.pairs[e].neighbour as usize;
                 let x = &self.disc.points.x;
@@ -259,7 +304,7 @@ impl PairKernel {
                 if !((s as f32) >= self.pairs[e].limit) {
                     continue;
                 }
-                let length = crate::geometry::norm(&crate::geometry::sub(&x[j], &x[i]));
+                let length = self.pairs[e].length;
                 let mut changed = false;
                 for (b, owner, other) in [(self.owned[e], i, j), (self.incoming[e], j, i)] {
                     if b != NONE
@@ -274,22 +319,71 @@ impl PairKernel {
                 }
                 if changed {
                     self.refresh(Some(&criterion), i, e);
-                    if self.mirror[e] != NONE {
-                        self.refresh(Some(&criterion), j, self.mirror[e] as usize);
-                    }
                 }
             }
         }
         self.criterion = Some(criterion);
         breaks
     }
-}
 
-impl ForceField for PairKernel {
-    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+    /// Dual horizons: each pair once, its force added to both points in the
+    /// buffer of its block; the buffers summed in a fixed order.
+    fn forces_dual(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Vec<usize> {
         let x = &self.disc.points.x;
         let (start, pairs) = (&self.start, &self.pairs);
-        let any = std::sync::atomic::AtomicBool::new(false);
+        self.blocks.par_iter_mut().for_each(|block| {
+            block.force.fill([0.0; 3]);
+            block.flagged.clear();
+            for i in block.rows.clone() {
+                let (xi, ui) = (&x[i], &u[i]);
+                let mut acc = [0.0; 3];
+                let mut over = false;
+                for p in &pairs[start[i]..start[i + 1]] {
+                    let j = p.neighbour as usize;
+                    let (c, y, flag) = pair_force(p, xi, &x[j], ui, &u[j]);
+                    over |= flag;
+                    let f = [c * y[0], c * y[1], c * y[2]];
+                    acc[0] += f[0];
+                    acc[1] += f[1];
+                    acc[2] += f[2];
+                    let fj = &mut block.force[j];
+                    fj[0] -= f[0];
+                    fj[1] -= f[1];
+                    fj[2] -= f[2];
+                }
+                let fi = &mut block.force[i];
+                fi[0] += acc[0];
+                fi[1] += acc[1];
+                fi[2] += acc[2];
+                if over {
+                    block.flagged.push(i as u32);
+                }
+            }
+        });
+        let blocks = &self.blocks;
+        out.par_iter_mut()
+            .enumerate()
+            .with_min_len(256)
+            .for_each(|(i, f)| {
+                let mut acc = [0.0; 3];
+                for block in blocks {
+                    let g = &block.force[i];
+                    acc[0] += g[0];
+                    acc[1] += g[1];
+                    acc[2] += g[2];
+                }
+                *f = acc;
+            });
+        self.blocks
+            .iter()
+            .flat_map(|b| b.flagged.iter().map(|&i| i as usize))
+            .collect()
+    }
+
+    /// Traditional horizons: each point gathers over its own bonds.
+    fn forces_traditional(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Vec<usize> {
+        let x = &self.disc.points.x;
+        let (start, pairs) = (&self.start, &self.pairs);
         out.par_iter_mut()
             .zip(self.flagged.par_iter_mut())
             .enumerate()
@@ -299,44 +393,43 @@ impl ForceField for PairKernel {
                 let mut acc = [0.0; 3];
                 let mut over = false;
                 for p in &pairs[start[i]..start[i + 1]] {
-                    // `stretch` written out with a single division: s = num/den,
-                    // force W s y/|y| = W num/(den |y|) y; the screen compares
-                    // num with limit × den, a little low so that no bond whose
-                    // exact stretch reaches its limit escapes it.
-                    let (xj, uj) = (&x[p.neighbour as usize], &u[p.neighbour as usize]);
-                    let d = [xj[0] - xi[0], xj[1] - xi[1], xj[2] - xi[2]];
-                    let e = [uj[0] - ui[0], uj[1] - ui[1], uj[2] - ui[2]];
-                    let y = [d[0] + e[0], d[1] + e[1], d[2] + e[2]];
-                    let l = p.length;
-                    let yl = (y[0] * y[0] + y[1] * y[1] + y[2] * y[2]).sqrt();
-                    let num = 2.0 * (d[0] * e[0] + d[1] * e[1] + d[2] * e[2])
-                        + (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-                    let den = (yl + l) * l;
-                    over |= num >= f64::from(p.limit) * den * SCREEN;
-                    let c = if yl > 0.0 {
-                        p.weight * num / (den * yl)
-                    } else {
-                        0.0
-                    };
+                    let j = p.neighbour as usize;
+                    let (c, y, screen) = pair_force(p, xi, &x[j], ui, &u[j]);
+                    over |= screen;
                     acc[0] += c * y[0];
                     acc[1] += c * y[1];
                     acc[2] += c * y[2];
                 }
                 *f = acc;
                 *flag = over;
-                if over {
-                    any.store(true, std::sync::atomic::Ordering::Relaxed);
-                }
             });
-        if any.into_inner() {
-            self.break_flagged(u)
+        self.flagged
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &f)| f.then_some(i))
+            .collect()
+    }
+}
+
+impl ForceField for PairKernel {
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+        let rows = if self.traditional {
+            self.forces_traditional(u, out)
         } else {
+            self.forces_dual(u, out)
+        };
+        if rows.is_empty() {
             Breaks::default()
+        } else {
+            self.break_rows(&rows, u)
         }
     }
 
     fn strain_energy(&self, u: &[[f64; 3]]) -> Option<f64> {
+        // Dual: each pair once, ½ W |ξ| s². Traditional: not conservative; the
+        // same sum over owned bonds with W = 2 w, halved.
         let x = &self.disc.points.x;
+        let factor = if self.traditional { 0.25 } else { 0.5 };
         let energy: f64 = (0..x.len())
             .into_par_iter()
             .map(|i| {
@@ -345,8 +438,7 @@ impl ForceField for PairKernel {
                     .map(|p| {
                         let j = p.neighbour as usize;
                         let (s, _, _) = stretch(&x[i], &x[j], &u[i], &u[j]);
-                        let l = crate::geometry::norm(&crate::geometry::sub(&x[j], &x[i]));
-                        0.25 * p.weight * l * s * s
+                        factor * p.weight * p.length * s * s
                     })
                     .sum::<f64>()
             })
