@@ -1,7 +1,8 @@
 """Explicit-dynamics benchmarks of dhpd (issue 9): reflection at a horizon jump,
 wave speed, dynamic relaxation against the implicit solve, throughput.
 
-Usage: python3 validation/dynamics/study.py [reflection|waves|relaxation|throughput|all]
+Usage: python3 validation/dynamics/study.py
+       [reflection|waves|relaxation|throughput|corner|shear_fracture|all]
 Env DHPD: the dhpd binary (default target/release/dhpd). Writes the scenes it
 runs into scenes/, numbers into results/, figures next to this file.
 """
@@ -350,9 +351,178 @@ def throughput(repeats=5):
         w.writerows(rows)
 
 
+# ---------------------------------------------------------------- 2D wave plate, refined corner
+def corner_scene(layout, horizons="dual", end_time=0.04):
+    """001 Sec. 6.1: plate 0.1 x 0.04 m, E = rho = 1, nu = 0 (shear model, plane
+    stress), spacing 1e-3 m with the corner [0.06, 0.1] x [0.02, 0.04] at 5e-4 m
+    (layout "corner"), or uniform 1e-3 / 5e-4 ("coarse" / "fine"); Gaussian
+    initial displacement at (0.04, 0.02)."""
+    coarse, fine = 1e-3, 5e-4
+    if layout == "corner":
+        regions = [((0.0, 0.0), (0.06, 0.04), coarse), ((0.06, 0.0), (0.1, 0.02), coarse),
+                   ((0.06, 0.02), (0.1, 0.04), fine)]
+    else:
+        h = coarse if layout == "coarse" else fine
+        regions = [((0.0, 0.0), (0.1, 0.04), h)]
+    text = f"""# 2D wave plate with a refined corner (001 Sec. 6.1): shear model, plane stress,
+# E = rho = 1, nu = 0, layout "{layout}", horizons "{horizons}".
+[model]
+dimension = "plane_stress"
+kind = "shear"
+horizons = "{horizons}"
+[materials.m]
+youngs_modulus = 1.0
+poisson_ratio = 0.0
+density = 1.0
+"""
+    for lo, hi, h in regions:
+        text += f"""[[regions]]
+material = "m"
+spacing = {h!r}
+box = {{ min = [{lo[0]!r}, {lo[1]!r}], max = [{hi[0]!r}, {hi[1]!r}] }}
+"""
+    text += f"""[[initial_conditions]]
+gaussian = {{ center = [0.04, 0.02], width = 0.004, amplitude = [1e-6, 1e-6] }}
+[dynamics]
+end_time = {end_time!r}
+time_step = 1.0e-4
+record_every = 100000
+[output]
+vtu = true
+"""
+    return text
+
+
+def corner():
+    """Reflection at the spacing jump: the refined run minus the uniform coarse
+    run, on the coarse points outside the corner, after the wave has reached
+    the corner and come back (t = 0.04 s, c = 1 m/s)."""
+    rows = []
+    for t_end in (0.03, 0.04):
+        outs = {}
+        for layout, horizons in (("corner", "dual"), ("corner", "constant"), ("coarse", "dual")):
+            outs[(layout, horizons)] = run(f"wave_plate_{layout}_{horizons}_t{t_end}",
+                                           corner_scene(layout, horizons, t_end),
+                                           keep=(t_end == 0.04))
+        ref = {(round(float(p["x"]), 9), round(float(p["y"]), 9)): p
+                 for p in points(outs[("coarse", "dual")])}
+        for key in (("corner", "dual"), ("corner", "constant")):
+            worst, amp = 0.0, 0.0
+            for p in points(outs[key]):
+                x, y = float(p["x"]), float(p["y"])
+                q = ref.get((round(x, 9), round(y, 9)))
+                if q is None:
+                    continue  # a fine point
+                u = math.hypot(float(p["u_x"]), float(p["u_y"]))
+                du = math.hypot(float(p["u_x"]) - float(q["u_x"]), float(p["u_y"]) - float(q["u_y"]))
+                worst = max(worst, du)
+                amp = max(amp, math.hypot(float(q["u_x"]), float(q["u_y"])))
+            s = summary(outs[key])
+            rows.append(dict(time=t_end, layout=key[0], horizons=key[1], points=s["points"],
+                             steps=s["steps"],
+                             max_difference_to_uniform=worst, max_wave_amplitude=amp,
+                             relative_percent=100 * worst / amp,
+                             balance_error=s["max_balance_error"], seconds=s["total_seconds"]))
+            print(rows[-1])
+    with open(os.path.join(RESULTS, "wave_plate_corner.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 3, figsize=(15, 2.9))
+    for ax, key in zip(axes, (("coarse", "dual"), ("corner", "dual"), ("corner", "constant"))):
+        pts = points(outs[key])
+        x = [float(p["x"]) for p in pts]
+        y = [float(p["y"]) for p in pts]
+        m = [math.hypot(float(p["u_x"]), float(p["u_y"])) for p in pts]
+        sc = ax.scatter(x, y, c=m, s=1.5, cmap="viridis", vmin=0, vmax=max(m))
+        ax.set_aspect("equal")
+        ax.set_title(f"{key[0]} spacing, {key[1]} horizons: |u| at t = 0.04 s", fontsize=9)
+        ax.plot([0.06, 0.06, 0.1], [0.04, 0.02, 0.02], "w:", lw=1)
+    fig.colorbar(sc, ax=axes, shrink=0.8)
+    fig.savefig(os.path.join(HERE, "wave_plate_corner.png"), dpi=110)
+
+
+# ---------------------------------------------------------------- shear model, dynamic mode I
+def shear_fracture():
+    """A coarse mode I case after 001 Sec. 6.4, in 2D: plate 0.5 x 0.2 m, edge
+    crack 0.3 m along the mid-height from the left, E = 30 GPa, nu = 1/3,
+    rho = 2400, G0 = 200 J/m^2, the top and bottom edges of the cracked part
+    (x < 0.1 m) pulled apart at 1 m/s: the crack mouth opens."""
+    rows = []
+    for model in ("shear", "bond_based"):
+        nu = "poisson_ratio = 0.3333333333333333\n" if model == "shear" else ""
+        text = f"""# Dynamic mode I fracture (after 001 Sec. 6.4, 2D plane stress, coarse):
+# {model} model, plate 0.5 x 0.2 m, edge crack 0.3 m, E = 30 GPa, nu = 1/3,
+# rho = 2400, G0 = 200 J/m^2, three layers of the top and bottom edges at x < 0.1 m
+# moved at +-1 m/s (the crack mouth opens).
+[model]
+dimension = "plane_stress"
+kind = "{model}"
+[materials.concrete]
+youngs_modulus = 3.0e10
+{nu}density = 2400.0
+fracture_energy = 200.0
+[[regions]]
+material = "concrete"
+spacing = 5e-3
+box = {{ min = [0.0, 0.0], max = [0.5, 0.2] }}
+[[cracks]]
+from = [0.0, 0.1]
+to = [0.3, 0.1]
+[[boundary]]
+name = "bottom"
+box = {{ min = [0.0, 0.0], max = [0.1, 0.015] }}
+velocity = {{ y = -1.0 }}
+[[boundary]]
+name = "top"
+box = {{ min = [0.0, 0.185], max = [0.1, 0.2] }}
+velocity = {{ y = 1.0 }}
+[fracture]
+no_fail = [ {{ box = {{ min = [0.0, 0.0], max = [0.1, 0.03] }} }}, {{ box = {{ min = [0.0, 0.17], max = [0.1, 0.2] }} }} ]
+[dynamics]
+end_time = 1e-3
+record_every = 20
+[output]
+every = 40
+"""
+        out = run(f"mode_one_dynamic_{model}", text)
+        pts = points(out)
+        cracked = [(float(p["x"]), float(p["y"])) for p in pts
+                   if float(p["damage"]) >= 0.35 and float(p["x"]) > 0.305]
+        tip = max((c[0] for c in cracked), default=0.3)
+        off = max((abs(c[1] - 0.1) for c in cracked), default=0.0)
+        s = summary(out)
+        rows.append(dict(model=model, points=s["points"], steps=s["steps"],
+                         bonds_broken=s["bonds_broken"], crack_tip_x=tip,
+                         largest_offset_from_crack_line=off,
+                         balance_error=s["max_balance_error"], seconds=s["total_seconds"]))
+        print(rows[-1])
+        if model == "shear":
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+            fig, ax = plt.subplots(figsize=(7, 3))
+            sc = ax.scatter([float(p["x"]) for p in pts], [float(p["y"]) for p in pts],
+                            c=[float(p["damage"]) for p in pts], s=3, cmap="inferno_r",
+                            vmin=0, vmax=1)
+            ax.set_aspect("equal")
+            ax.set_title("shear model, dynamic mode I: damage at t = 1 ms", fontsize=9)
+            fig.colorbar(sc, ax=ax, shrink=0.8)
+            fig.tight_layout()
+            fig.savefig(os.path.join(HERE, "mode_one_shear.png"), dpi=110)
+    with open(os.path.join(RESULTS, "mode_one_dynamic.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "all"
     for name, fn in (("reflection", reflection), ("waves", waves),
-                     ("relaxation", relaxation), ("throughput", throughput)):
+                     ("relaxation", relaxation), ("throughput", throughput),
+                     ("corner", corner), ("shear_fracture", shear_fracture)):
         if what in (name, "all"):
             fn()

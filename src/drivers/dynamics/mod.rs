@@ -720,7 +720,11 @@ impl Verlet<'_> {
                     self.kernel.strain_energy(&u).unwrap_or(0.0)
                 };
                 let broken_part = if uses_work { 0.0 } else { broken_energy };
-                scale = scale.max(e_kin + e_strain).max(w_ext.abs());
+                scale = scale
+                    .max(e_kin)
+                    .max(e_strain.abs())
+                    .max((e_kin + e_strain).abs())
+                    .max(w_ext.abs());
                 let balance = e_kin + e_strain + broken_part + damping_work - w_ext - e0;
                 let relative = if scale > 0.0 { balance / scale } else { 0.0 };
                 max_balance = max_balance.max(relative.abs());
