@@ -2,7 +2,7 @@
 wave speed, dynamic relaxation against the implicit solve, throughput.
 
 Usage: python3 validation/dynamics/study.py
-       [reflection|waves|relaxation|throughput|corner|shear_fracture|all]
+       [reflection|waves|relaxation|throughput|corner|shear_fracture|kalthoff|branching|all]
 Env DHPD: the dhpd binary (default target/release/dhpd). Writes the scenes it
 runs into scenes/, numbers into results/, figures next to this file.
 """
@@ -519,10 +519,268 @@ every = 40
         w.writerows(rows)
 
 
+# ---------------------------------------------------------------- dynamic fracture
+def read_vtu(path):
+    """Points (x, y) and the damage of a dhpd VTU file (ASCII or binary)."""
+    import base64
+    import re
+    import struct
+    text = open(path).read()
+    arrays = {}
+    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"[^>]*format="(\w+)">\n(.*?)</DataArray>',
+                         text, re.S):
+        kind, name, fmt, body = m.groups()
+        if fmt == "ascii":
+            values = [float(v) for v in body.split()]
+        else:
+            raw = base64.b64decode(body.strip())
+            count = struct.unpack("<I", raw[:4])[0]
+            code = {"Float64": "d", "Int32": "i", "Int64": "q", "UInt8": "B"}[kind]
+            size = struct.calcsize(code)
+            values = list(struct.unpack("<%d%s" % (count // size, code), raw[4:4 + count]))
+        arrays[name] = values
+    pts = arrays["points"]
+    xy = [(pts[3 * k], pts[3 * k + 1]) for k in range(len(pts) // 3)]
+    return xy, arrays["damage"]
+
+
+def series(out):
+    """(time, file) of the snapshots of a run."""
+    import re
+    text = open(os.path.join(out, "series.pvd")).read()
+    return [(float(t), os.path.join(out, f))
+            for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', text)]
+
+
+def principal_angle(points):
+    """Angle (degrees from +x, in [0, 180)) of the principal axis of a point set."""
+    n = len(points)
+    mx = sum(p[0] for p in points) / n
+    my = sum(p[1] for p in points) / n
+    sxx = sum((p[0] - mx) ** 2 for p in points)
+    syy = sum((p[1] - my) ** 2 for p in points)
+    sxy = sum((p[0] - mx) * (p[1] - my) for p in points)
+    return math.degrees(0.5 * math.atan2(2 * sxy, sxx - syy)) % 180.0
+
+
+def kalthoff_scene(name, regions, g0=6.9e4, end_time=90e-6):
+    text = f"""# Kalthoff-Winkler (000 Sec. 6): plate 0.2 x 0.1 m, notches 50 mm long from the
+# left edge at y = 25 and 75 mm, the left edge between them hit at 22 m/s (three
+# point layers), E = 190 GPa, rho = 7800, nu = 1/4 (bond-based, plane strain),
+# G0 = {g0:g} J/m^2 (000 Sec. 6: 6.9e4), delta = 3.015 dx; {name}.
+[model]
+dimension = "plane_strain"
+[materials.steel]
+youngs_modulus = 1.9e11
+density = 7800.0
+fracture_energy = {g0!r}
+"""
+    for lo, hi, h in regions:
+        text += f"""[[regions]]
+material = "steel"
+spacing = {h!r}
+box = {{ min = [{lo[0]!r}, {lo[1]!r}], max = [{hi[0]!r}, {hi[1]!r}] }}
+"""
+    h0 = regions[0][2]
+    text += f"""[[cracks]]
+from = [0.0, 0.025]
+to = [0.05, 0.025]
+[[cracks]]
+from = [0.0, 0.075]
+to = [0.05, 0.075]
+[[boundary]]
+name = "impactor"
+box = {{ min = [0.0, 0.025], max = [{3 * h0!r}, 0.075] }}
+velocity = {{ x = 22.0 }}
+[fracture]
+no_fail = [ {{ box = {{ min = [0.0, 0.025], max = [{3 * h0!r}, 0.075] }} }} ]
+[dynamics]
+end_time = {end_time!r}
+record_every = 50
+[output]
+every = 50
+"""
+    return text
+
+
+def crack_history(out, tip, side, damage=0.35):
+    """Crack-tip distance from the notch tip against time, from the snapshots:
+    the farthest damaged point beyond the tip on one side (+1 upper, −1 lower)."""
+    rows = []
+    for t, f in series(out):
+        xy, phi = read_vtu(f)
+        cracked = [p for p, d in zip(xy, phi) if d >= damage and p[0] > tip[0] + 1e-3
+                   and side * (p[1] - 0.05) > 0]
+        reach = max((math.hypot(p[0] - tip[0], p[1] - tip[1]) for p in cracked), default=0.0)
+        rows.append((t, reach))
+    return rows
+
+
+def speed(history, lo=0.005):
+    """Mean crack speed while it grows: from the first snapshot with a crack
+    longer than `lo` to the first one at its final length."""
+    final = max((r for _, r in history), default=0.0)
+    grown = [(t, r) for t, r in history if r > lo]
+    if len(grown) < 2:
+        return float("nan")
+    end = next(k for k, (_, r) in enumerate(grown) if r >= final)
+    (t0, r0), (t1, r1) = grown[0], grown[max(end, 1)]
+    return (r1 - r0) / (t1 - t0) if t1 > t0 else float("nan")
+
+
+def kalthoff():
+    mu = 1.9e11 / 2.5
+    cs = math.sqrt(mu / 7800.0)
+    cr = 0.9194 * cs
+    cases = [
+        ("uniform 1 mm", "kalthoff_uniform_1mm", [((0.0, 0.0), (0.2, 0.1), 1e-3)]),
+        ("uniform 0.5 mm", "kalthoff_uniform_0.5mm", [((0.0, 0.0), (0.2, 0.1), 5e-4)]),
+        ("0.5 mm band x in [0.04, 0.14] m, 1 mm elsewhere (DH-PD)", "kalthoff_band",
+         [((0.0, 0.0), (0.04, 0.1), 1e-3), ((0.04, 0.0), (0.14, 0.1), 5e-4),
+          ((0.14, 0.0), (0.2, 0.1), 1e-3)]),
+    ]
+    rows = []
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(2, len(cases), figsize=(5 * len(cases), 5.6))
+    for g0, ax_row in ((6.9e4, axes[0]), (6.9e3, axes[1])):
+      for ax, (label, name, regions) in zip(ax_row, cases):
+        out = run(f"{name}_g{g0:g}", kalthoff_scene(label, regions, g0))
+        s = summary(out)
+        pts = points(out)
+        for side, tip in ((1, (0.05, 0.075)), (-1, (0.05, 0.025))):
+            cracked = [(float(p["x"]), float(p["y"])) for p in pts
+                       if float(p["damage"]) >= 0.35 and float(p["x"]) > tip[0] + 2e-3
+                       and side * (float(p["y"]) - 0.05) > 0
+                       and 0.002 < float(p["y"]) < 0.098 and float(p["x"]) < 0.198]
+            angle = principal_angle(cracked) if len(cracked) > 3 else float("nan")
+            # From the notch direction (+x), as an acute angle.
+            angle = min(angle, 180.0 - angle)
+            hist = crack_history(out, tip, side)
+            v = speed(hist)
+            start = next((t for t, r in hist if r > 0), float("nan"))
+            rows.append(dict(g0=g0, case=label, crack="upper" if side > 0 else "lower",
+                             points=s["points"], steps=s["steps"],
+                             bonds_broken=s["bonds_broken"], angle_deg=angle,
+                             initiation_us=start * 1e6, crack_speed=v,
+                             speed_over_rayleigh=v / cr,
+                             final_length=hist[-1][1] if hist else 0.0,
+                             seconds=s["total_seconds"]))
+            print(rows[-1])
+        ax.scatter([float(p["x"]) for p in pts], [float(p["y"]) for p in pts],
+                   c=[float(p["damage"]) for p in pts], s=0.3, cmap="inferno_r", vmin=0, vmax=1)
+        ax.set_aspect("equal")
+        ax.set_title(f"G0 = {g0:g}, {label}: damage at 90 µs", fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "kalthoff.png"), dpi=120)
+    with open(os.path.join(RESULTS, "kalthoff.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+
+
+def branching():
+    """Ha & Bobaru (2010): glass plate 0.1 x 0.04 m, notch 50 mm from the left
+    edge at mid-height, E = 72 GPa, rho = 2440, G0 = 3.8 J/m^2, delta = 1 mm
+    (spacing 1/3 mm, m = 3), 2 MPa applied suddenly on the top and bottom edges,
+    43 us, bond-based plane stress."""
+    h = 1.0 / 3000.0
+    text = f"""# Dynamic crack branching (Ha & Bobaru 2010): glass 0.1 x 0.04 m, notch 50 mm at
+# mid-height, E = 72 GPa, rho = 2440, G0 = 3.8 J/m^2, delta = 1 mm (spacing 1/3 mm,
+# m = 3), 2 MPa on the top and bottom edges from t = 0, bond-based plane stress.
+[model]
+dimension = "plane_stress"
+[discretization]
+horizon_factor = 3.0
+[materials.glass]
+youngs_modulus = 7.2e10
+density = 2440.0
+fracture_energy = 3.8
+[[regions]]
+material = "glass"
+spacing = {h!r}
+box = {{ min = [0.0, 0.0], max = [0.1, 0.04] }}
+[[cracks]]
+from = [0.0, 0.02]
+to = [0.05, 0.02]
+[[loads]]
+name = "top"
+kind = "traction"
+face = "+y"
+value = [0.0, 2.0e6]
+[[loads]]
+name = "bottom"
+kind = "traction"
+face = "-y"
+value = [0.0, -2.0e6]
+[dynamics]
+end_time = 43e-6
+record_every = 50
+[output]
+every = 25
+"""
+    out = run("branching_glass", text)
+    s = summary(out)
+    cr = 0.9194 * math.sqrt(7.2e10 / (2 * (1 + 1 / 3)) / 2440.0)
+    hist = []
+    branch = None
+    for t, f in series(out):
+        xy, phi = read_vtu(f)
+        cracked = [p for p, d in zip(xy, phi) if d >= 0.35 and p[0] > 0.0505]
+        tip = max((p[0] for p in cracked), default=0.05)
+        hist.append((t, tip))
+        if branch is None and cracked:
+            # A branch: at some x the damaged points split into two groups in y
+            # more than 2 horizons apart.
+            columns = {}
+            for p in cracked:
+                columns.setdefault(round(p[0] / h), []).append(p[1])
+            for k in sorted(columns):
+                ys = sorted(columns[k])
+                if any(b - a > 2e-3 for a, b in zip(ys, ys[1:])):
+                    branch = (t, k * h)
+                    break
+    speeds = [((t0 + t1) / 2, (x1 - x0) / (t1 - t0))
+              for (t0, x0), (t1, x1) in zip(hist, hist[1:]) if t1 > t0]
+    top = max((v for _, v in speeds), default=float("nan"))
+    rows = [dict(points=s["points"], steps=s["steps"], time_step=s["time_step"],
+                 branch_time=branch[0] if branch else float("nan"),
+                 branch_x=branch[1] if branch else float("nan"),
+                 max_tip_speed=top, rayleigh=cr, max_speed_over_rayleigh=top / cr,
+                 final_tip_x=hist[-1][1], seconds=s["total_seconds"])]
+    print(rows[0])
+    with open(os.path.join(RESULTS, "branching.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    with open(os.path.join(RESULTS, "branching_tip.csv"), "w", newline="") as f:
+        f.write("time,tip_x\n")
+        for t, x in hist:
+            f.write(f"{t!r},{x!r}\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    pts = points(out)
+    fig, (a, b) = plt.subplots(1, 2, figsize=(12, 3.2))
+    a.scatter([float(p["x"]) for p in pts], [float(p["y"]) for p in pts],
+              c=[float(p["damage"]) for p in pts], s=0.2, cmap="inferno_r", vmin=0, vmax=1)
+    a.set_aspect("equal")
+    a.set_title("glass plate, 2 MPa: damage at 43 µs", fontsize=9)
+    b.plot([t * 1e6 for t, _ in speeds], [v for _, v in speeds], "o-", ms=3)
+    b.axhline(cr, color="k", ls=":", label="Rayleigh speed")
+    b.set_xlabel("t [µs]")
+    b.set_ylabel("crack-tip speed [m/s] (x of the farthest damaged point)")
+    b.legend()
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "branching.png"), dpi=120)
+
+
 if __name__ == "__main__":
     what = sys.argv[1] if len(sys.argv) > 1 else "all"
     for name, fn in (("reflection", reflection), ("waves", waves),
                      ("relaxation", relaxation), ("throughput", throughput),
-                     ("corner", corner), ("shear_fracture", shear_fracture)):
+                     ("corner", corner), ("shear_fracture", shear_fracture),
+                     ("kalthoff", kalthoff), ("branching", branching)):
         if what in (name, "all"):
             fn()
