@@ -289,6 +289,12 @@ const CASES: &[Case] = &[
     c("linearised_kernel_with_fracture", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0\nfracture_energy = 100.0"), Add("\n[dynamics]\nsteps = 5\nkernel = \"linearised\"\n")], None, 2, &["dynamics.kernel", "nonlinear"]),
     c("traditional_horizons_in_a_static_scene", &[Rep("dimension = \"plane_stress\"", "dimension = \"plane_stress\"\nhorizons = \"traditional\"")], None, 2, &["model.horizons", "explicit dynamics"]),
     c("refactor_iterations_in_dynamics", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[solver]\nrefactor_iterations = 5\n")], None, 2, &["solver.refactor_iterations", "quasi-static"]),
+    // --- outside-in hardening ---
+    c("explicit_horizon_too_large", &[Rep("spacing = 0.01", "spacing = 0.01\nhorizon = 10.0")], None, 2, &["regions[0].horizon", "implausibly large", "1000"]),
+    c("horizon_as_wide_as_the_body", &[Rep("spacing = 0.01", "spacing = 0.01\nhorizon_factor = 20.0")], None, 2, &["regions[0].horizon_factor", "not smaller than the body"]),
+    c("point_file_horizon_too_large", &[Add(PF)], Some("0.30 0.05 1e-6 1.0\n0.31 0.05 1e-6 1.0\n"), 2, &["point_files[0]", "implausibly large"]),
+    c("probe_outside_the_body", &[Add("\n[[output.probes]]\nname = \"far\"\nat = [5.0, 5.0]\n")], None, 2, &["output.probes[0].at", "outside the body"]),
+    c("output_name_too_long", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\"")], None, 2, &["--out", "cannot create"]),
 ];
 /// A per-case temporary directory, removed on drop.
 struct TempDir(PathBuf);

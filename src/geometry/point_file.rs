@@ -96,6 +96,15 @@ pub fn parse(
                 file.horizon_factor
             )));
         }
+        let factor = crate::scene::MAX_HORIZON_FACTOR;
+        if horizon > factor * spacing {
+            return Err(at(format!(
+                "horizon {horizon} is {:.4} times the point's equivalent spacing {spacing} \
+                 ((volume / thickness)^(1/{d})): implausibly large (above {factor}); typical \
+                 horizons are 2 to 5 spacings",
+                horizon / spacing
+            )));
+        }
         let material = if cols.len() == d + 3 {
             let name = cols[d + 2];
             materials

@@ -57,17 +57,28 @@ impl Plan {
             pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             profiles.push((p.name.clone(), pts));
         }
-        let probes = scene
-            .output
-            .probes
-            .iter()
-            .map(|p| {
-                let nearest = (0..x.len())
-                    .min_by(|&a, &b| norm(&sub(&x[a], &p.at)).total_cmp(&norm(&sub(&x[b], &p.at))))
-                    .unwrap_or(0);
-                (p.name.clone(), nearest)
-            })
-            .collect();
+        let mut probes = Vec::new();
+        for (k, p) in scene.output.probes.iter().enumerate() {
+            let nearest = (0..x.len())
+                .min_by(|&a, &b| norm(&sub(&x[a], &p.at)).total_cmp(&norm(&sub(&x[b], &p.at))))
+                .unwrap_or(0);
+            // A location inside the body is within half a cell diagonal of a point.
+            let distance = norm(&sub(&x[nearest], &p.at));
+            let spacing = disc.points.spacing[nearest];
+            if !(distance <= spacing) {
+                return Err(InputError::new(
+                    format!("output.probes[{k}].at"),
+                    format!(
+                        "probe \"{}\" is {distance:.4e} m from the nearest point ({:?}), more than \
+                         that point's spacing {spacing:e} m: the location is outside the body \
+                         (or in a hole); move it onto the body",
+                        p.name,
+                        &x[nearest][..disc.d]
+                    ),
+                ));
+            }
+            probes.push((p.name.clone(), nearest));
+        }
         Ok(Plan { profiles, probes })
     }
 }
@@ -105,18 +116,42 @@ impl StaticSolution {
 pub struct Staging {
     dir: PathBuf,
     tmp: PathBuf,
+    /// Ancestors of `dir` this staging created (deepest first), removed again
+    /// if the run fails and they are empty.
+    created: Vec<PathBuf>,
     committed: bool,
+}
+
+/// The ancestors of `path` that do not exist yet, deepest first.
+fn missing_ancestors(path: &Path) -> Vec<PathBuf> {
+    path.ancestors()
+        .skip(1)
+        .take_while(|p| !p.as_os_str().is_empty() && !p.exists())
+        .map(Path::to_path_buf)
+        .collect()
+}
+
+/// Removes the (empty) directories of `created`, deepest first.
+fn remove_created(created: &[PathBuf]) {
+    for p in created {
+        let _ = std::fs::remove_dir(p);
+    }
 }
 
 impl Staging {
     /// Creates the temporary directory next to `dir`.
     pub fn new(dir: &Path) -> Result<Self, Error> {
         let tmp = temporary_sibling(dir);
+        let created = missing_ancestors(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
-        std::fs::create_dir_all(&tmp).map_err(|e| Error::io(&tmp, e))?;
+        if let Err(e) = std::fs::create_dir_all(&tmp) {
+            remove_created(&created);
+            return Err(Error::io(&tmp, e));
+        }
         Ok(Self {
             dir: dir.to_path_buf(),
             tmp,
+            created,
             committed: false,
         })
     }
@@ -153,6 +188,7 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.tmp);
+            remove_created(&self.created);
         }
     }
 }
@@ -243,7 +279,7 @@ pub fn check_output_dir(dir: &Path) -> Result<(), InputError> {
         }
     }
     if !dir.exists() {
-        return Ok(());
+        return probe_writable(dir).map_err(refuse);
     }
     if !dir.is_dir() {
         return Err(refuse("it exists and is not a directory".into()));
@@ -262,7 +298,21 @@ pub fn check_output_dir(dir: &Path) -> Result<(), InputError> {
     if !empty && !dir.join("summary.json").is_file() {
         return Err(refuse("it exists, is not empty and holds no dhpd result (summary.json); it is replaced only then".into()));
     }
-    Ok(())
+    probe_writable(dir).map_err(refuse)
+}
+
+/// Creates and removes the staging directory of `dir` (and any missing
+/// parent), so that an output that cannot be written (read-only location, a
+/// name too long for the file system) is refused before any work, leaving
+/// nothing behind.
+fn probe_writable(dir: &Path) -> Result<(), String> {
+    let tmp = temporary_sibling(dir);
+    let created = missing_ancestors(&tmp);
+    let result = std::fs::create_dir_all(&tmp)
+        .map_err(|e| format!("cannot create {} there ({e})", tmp.display()));
+    let _ = std::fs::remove_dir(&tmp);
+    remove_created(&created);
+    result
 }
 
 fn file_name(dir: &Path) -> String {

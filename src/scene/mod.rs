@@ -18,6 +18,7 @@ pub use spec::*;
 pub use validate::{
     Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,
     Material, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region, Scene,
+    MAX_HORIZON_FACTOR,
 };
 
 use crate::error::{Error, InputError};

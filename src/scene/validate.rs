@@ -346,6 +346,11 @@ impl Scene {
                             "horizon {h} is not larger than the spacing {}: no point would have a neighbour; \
                              use a horizon of about 3 spacings", r.spacing)));
                     }
+                    if h > MAX_HORIZON_FACTOR * r.spacing {
+                        return Err(InputError::new(format!("{f}.horizon"), format!(
+                            "horizon {h} is {:.4} spacings ({}): implausibly large (above {MAX_HORIZON_FACTOR}); \
+                             typical horizons are 2 to 5 spacings", h / r.spacing, r.spacing)));
+                    }
                     HorizonRule::Radius(h)
                 }
                 (None, Some(m)) => {
@@ -376,6 +381,33 @@ impl Scene {
                 bounds,
                 horizon,
             });
+        }
+        if let Some(first) = regions.first() {
+            // A horizon as wide as the body bonds every point to every other.
+            let (mut lo, mut hi) = (first.bounds.min, first.bounds.max);
+            for r in &regions {
+                for a in 0..d {
+                    lo[a] = lo[a].min(r.bounds.min[a]);
+                    hi[a] = hi[a].max(r.bounds.max[a]);
+                }
+            }
+            let extent = (0..d).map(|a| hi[a] - lo[a]).fold(0.0, f64::max);
+            for (k, r) in regions.iter().enumerate() {
+                let (radius, field) = match r.horizon {
+                    HorizonRule::Factor(m) => (m * r.spacing, "horizon_factor"),
+                    HorizonRule::Radius(h) => (h, "horizon"),
+                };
+                if radius >= extent {
+                    return Err(InputError::new(
+                        format!("regions[{k}].{field}"),
+                        format!(
+                            "gives a horizon of {radius} m, not smaller than the body ({extent} m \
+                             across its regions): every point would bond to every other; use a \
+                             finer spacing or a smaller horizon"
+                        ),
+                    ));
+                }
+            }
         }
         for i in 0..regions.len() {
             for j in 0..i {
@@ -864,6 +896,9 @@ fn fracture_runs(
     ))
 }
 
+/// Largest horizon, in spacings, a scene may give (factor or radius).
+pub const MAX_HORIZON_FACTOR: f64 = 20.0;
+
 /// Bytes per GiB.
 const GIB: f64 = 1073741824.0;
 
@@ -883,10 +918,10 @@ fn check_horizon_factor(field: &str, m: f64) -> Result<(), InputError> {
         return Err(InputError::new(field, format!(
             "{m} would make the horizon no larger than the spacing (no neighbours); use a value above 1, typically 3.015")));
     }
-    if m > 20.0 {
+    if m > MAX_HORIZON_FACTOR {
         return Err(InputError::new(
             field,
-            format!("{m} is implausibly large (above 20 spacings); typical values are 2 to 5"),
+            format!("{m} is implausibly large (above {MAX_HORIZON_FACTOR} spacings); typical values are 2 to 5"),
         ));
     }
     Ok(())
