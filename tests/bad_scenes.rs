@@ -607,3 +607,62 @@ fn output_directory_is_never_clobbered() {
         assert!(result.join("summary.json").is_file());
     }
 }
+
+/// Inputs that are not regular UTF-8 files: a named pipe as a point file (would
+/// block forever), a device as the scene (would never end), a UTF-16 scene. Each
+/// is refused at once, naming the field, with exit code 2.
+#[cfg(unix)]
+#[test]
+fn special_files_and_encodings_are_refused() {
+    let dir = TempDir::new("special-files");
+    let scene = dir.0.join("fifo.toml");
+    std::fs::write(
+        &scene,
+        "[model]\ndimension = \"plane_stress\"\n[materials.m]\nyoungs_modulus = 1.0\n\
+         [[point_files]]\npath = \"pipe.xyz\"\nmaterial = \"m\"\n",
+    )
+    .expect("write the scene");
+    let made = Command::new("mkfifo")
+        .arg(dir.0.join("pipe.xyz"))
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    let utf16 = dir.0.join("utf16.toml");
+    let text: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(BASE.encode_utf16().flat_map(|c| c.to_le_bytes()))
+        .collect();
+    std::fs::write(&utf16, text).expect("write the UTF-16 scene");
+    for (path, field, message) in [
+        (scene.as_path(), "point_files[0].path", "not a regular file"),
+        (Path::new("/dev/zero"), "scene", "not a regular file"),
+        (utf16.as_path(), "scene", "UTF-16"),
+    ] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+            .arg("check")
+            .arg(path)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .expect("dhpd starts");
+        let start = Instant::now();
+        let status = loop {
+            if let Some(status) = child.try_wait().expect("wait") {
+                break status;
+            }
+            if start.elapsed().as_secs() > 20 {
+                let _ = child.kill();
+                panic!("dhpd check {} did not return", path.display());
+            }
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        };
+        let out = child.wait_with_output().expect("output");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(status.code(), Some(2), "{}: {stderr}", path.display());
+        assert!(
+            stderr.contains(field) && stderr.contains(message),
+            "{}: {stderr}",
+            path.display()
+        );
+    }
+}

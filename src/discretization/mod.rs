@@ -129,7 +129,11 @@ pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
         raw.extend(grid::fill(region, k, d, scene.thickness));
     }
     for (k, file) in scene.point_files.iter().enumerate() {
-        let text = std::fs::read_to_string(&file.path).map_err(|e| Error::io(&file.path, e))?;
+        let text = crate::scene::read_text_file(
+            &file.path,
+            &format!("{}.path", file.field),
+            crate::scene::MAX_POINT_FILE_BYTES,
+        )?;
         raw.extend(point_file::parse(
             &text,
             file,

@@ -64,9 +64,83 @@ fn toml_error(text: &str, e: &toml::de::Error) -> InputError {
     InputError::new("scene", format!("{}{location}", e.message().trim_end()))
 }
 
+/// Largest scene file read, in bytes.
+const MAX_SCENE_BYTES: u64 = 16 << 20;
+
+/// Largest point file read, in bytes.
+pub const MAX_POINT_FILE_BYTES: u64 = 4 << 30;
+
+/// Reads a text input file: regular files only (a pipe or a device would hang
+/// or never end), at most `max_bytes`, UTF-8 (a leading byte-order mark is
+/// dropped; UTF-16 is recognised and named). `field` names the input in errors.
+pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
+    if !meta.is_file() {
+        return Err(InputError::new(
+            field,
+            format!(
+                "{} is not a regular file (a directory, pipe or device); give a file",
+                path.display()
+            ),
+        )
+        .into());
+    }
+    if meta.len() > max_bytes {
+        return Err(InputError::new(
+            field,
+            format!(
+                "{} has {} bytes; at most {max_bytes} are read",
+                path.display(),
+                meta.len()
+            ),
+        )
+        .into());
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|f| f.take(max_bytes + 1).read_to_end(&mut bytes))
+        .map_err(|e| Error::io(path, e))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(InputError::new(
+            field,
+            format!(
+                "{} grew beyond {max_bytes} bytes while read",
+                path.display()
+            ),
+        )
+        .into());
+    }
+    let utf16 = bytes.starts_with(&[0xFF, 0xFE])
+        || bytes.starts_with(&[0xFE, 0xFF])
+        || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));
+    let body = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(&bytes);
+    match std::str::from_utf8(body) {
+        Ok(text) => Ok(text.to_string()),
+        Err(_) if utf16 => Err(InputError::new(
+            field,
+            format!(
+                "{} looks like UTF-16 text (byte-order mark or zero bytes between characters); \
+                 save it as UTF-8",
+                path.display()
+            ),
+        )
+        .into()),
+        Err(e) => Err(InputError::new(
+            field,
+            format!(
+                "{} is not valid UTF-8 (first invalid byte at offset {}); save it as UTF-8 text",
+                path.display(),
+                e.valid_up_to()
+            ),
+        )
+        .into()),
+    }
+}
+
 /// Reads, parses and validates a scene file (`.json` is read as JSON, anything else as TOML).
 pub fn load(path: &Path) -> Result<Scene, Error> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let text = read_text_file(path, "scene", MAX_SCENE_BYTES)?;
     let json = path
         .extension()
         .is_some_and(|ext| ext.eq_ignore_ascii_case("json"));
