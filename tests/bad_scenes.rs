@@ -295,6 +295,9 @@ const CASES: &[Case] = &[
     c("point_file_horizon_too_large", &[Add(PF)], Some("0.30 0.05 1e-6 1.0\n0.31 0.05 1e-6 1.0\n"), 2, &["point_files[0]", "implausibly large"]),
     c("probe_outside_the_body", &[Add("\n[[output.probes]]\nname = \"far\"\nat = [5.0, 5.0]\n")], None, 2, &["output.probes[0].at", "outside the body"]),
     c("output_name_too_long", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\"")], None, 2, &["--out", "cannot create"]),
+    c("youngs_modulus_overflows_the_stiffness", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e308")], None, 2, &["materials.soft.youngs_modulus", "floating-point range"]),
+    c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
+
 ];
 /// A per-case temporary directory, removed on drop.
 struct TempDir(PathBuf);
@@ -665,4 +668,27 @@ fn special_files_and_encodings_are_refused() {
             path.display()
         );
     }
+}
+
+/// Issue 10: a traction of 1e160 Pa (forces of 1e157 N) solves like 1 Pa does:
+/// the norms are scaled, so the residual is not lost to an overflow of the
+/// squares (which reported a residual of 0 before), and the reaction balances
+/// the load to round-off.
+#[test]
+fn huge_tractions_keep_their_residual_and_balance() {
+    let text = BASE.replace("value = [1.0e6, 0.0]", "value = [1.0e160, 0.0]");
+    let s = dhpd::drivers::static_solve::solve(&common::scene(&text)).expect("solves");
+    assert!(
+        s.residual > 0.0 && s.residual < 1e-10,
+        "residual {}",
+        s.residual
+    );
+    let left = s.reaction("left").expect("the clamp's reaction");
+    let applied = 1e160 * 0.1 * 0.01;
+    assert!(
+        (left[0] / -applied - 1.0).abs() < 1e-10,
+        "reaction {:e} vs {:e}",
+        left[0],
+        -applied
+    );
 }

@@ -54,6 +54,7 @@ pub fn external_forces(
                         f[i][c] += fc;
                         total[c] += fc;
                     }
+                    finite(k, &f[i], i)?;
                 }
                 count = selected.len();
             }
@@ -70,10 +71,20 @@ pub fn external_forces(
                             f[i][c] += fc;
                             total[c] += fc;
                         }
+                        finite(k, &f[i], i)?;
                         count += 1;
                     }
                 }
             }
+        }
+        if total.iter().any(|v| !v.is_finite()) {
+            return Err(InputError::new(
+                format!("loads[{k}].value"),
+                format!(
+                    "the total force of \"{}\" is not finite ({total:?} N): rescale the units",
+                    load.name
+                ),
+            ));
         }
         applied.push(AppliedLoad {
             name: load.name.clone(),
@@ -82,4 +93,24 @@ pub fn external_forces(
         });
     }
     Ok((f, applied))
+}
+
+/// Largest point force accepted, in N: products with the stiffness and sums over
+/// bonds need headroom below the largest double (1.8e308).
+const MAX_POINT_FORCE: f64 = 1e250;
+
+/// Refuses a point force that is not finite or leaves no headroom.
+fn finite(k: usize, force: &[f64; 3], point: usize) -> Result<(), InputError> {
+    if force.iter().all(|v| v.abs() <= MAX_POINT_FORCE) {
+        Ok(())
+    } else {
+        Err(InputError::new(
+            format!("loads[{k}].value"),
+            format!(
+                "gives point {point} a force of {force:?} N (the value times its volume or face \
+                 share): not finite or above {MAX_POINT_FORCE:e} N, outside the range the \
+                 solution can be computed in; rescale the units"
+            ),
+        ))
+    }
 }

@@ -375,6 +375,23 @@ impl Scene {
                     ),
                 ));
             }
+            // The bond stiffness C(δ) V² / Δx must be a normal floating-point number.
+            let stiffness =
+                bond_based::micromodulus(dimension, &materials[material], radius, thickness)
+                    * volume
+                    * volume
+                    / r.spacing;
+            if !(stiffness.is_normal() && stiffness > 0.0) {
+                return Err(InputError::new(
+                    format!("materials.{}.youngs_modulus", materials[material].name),
+                    format!(
+                        "with the spacing {} and horizon {radius} of regions[{k}], a bond's \
+                         stiffness C V²/Δx would be {stiffness:e}: outside the floating-point range; \
+                         rescale the units (e.g. MPa and mm)",
+                        r.spacing
+                    ),
+                ));
+            }
             regions.push(Region {
                 material,
                 spacing: r.spacing,

@@ -21,7 +21,8 @@ pub fn pcg(
     max_iterations: usize,
 ) -> KrylovReport {
     let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(p, q)| p * q).sum::<f64>();
-    let b_norm = dot(b, b).sqrt();
+    let norm = |v: &[f64]| super::norm2(v.iter().copied());
+    let b_norm = norm(b);
     if b_norm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);
         return KrylovReport {
@@ -38,7 +39,7 @@ pub fn pcg(
     precondition(&mut z);
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
-    while dot(&r, &r).sqrt() > tol * b_norm && iterations < max_iterations {
+    while norm(&r) > tol * b_norm && iterations < max_iterations {
         let ap = apply(&p);
         iterations += 1;
         let pap = dot(&p, &ap);
@@ -59,13 +60,7 @@ pub fn pcg(
             .for_each(|(pi, zi)| *pi = zi + beta * *pi);
     }
     let ax = apply(x);
-    let true_residual = b
-        .iter()
-        .zip(&ax)
-        .map(|(bi, ai)| (bi - ai) * (bi - ai))
-        .sum::<f64>()
-        .sqrt()
-        / b_norm;
+    let true_residual = super::norm2(b.iter().zip(&ax).map(|(bi, ai)| bi - ai)) / b_norm;
     KrylovReport {
         iterations,
         relative_residual: true_residual,

@@ -33,7 +33,7 @@ pub fn gmres(
     max_iterations: usize,
 ) -> GmresReport {
     let n = b.len();
-    let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let norm = |v: &[f64]| super::norm2(v.iter().copied());
     let b_norm = norm(b);
     if b_norm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);

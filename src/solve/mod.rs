@@ -360,15 +360,31 @@ pub fn refine(
     (residual, steps)
 }
 
+/// Euclidean norm without overflow or underflow of the squares: scaled by the
+/// largest magnitude first (a vector of 1e160s has a norm, not ∞; non-finite
+/// entries give a non-finite norm).
+pub fn norm2<I: Iterator<Item = f64> + Clone>(values: I) -> f64 {
+    let mut largest = 0.0f64;
+    for v in values.clone() {
+        if v.is_nan() {
+            return f64::NAN;
+        }
+        largest = largest.max(v.abs());
+    }
+    if largest == 0.0 || largest.is_infinite() {
+        return largest;
+    }
+    largest
+        * values
+            .map(|v| (v / largest) * (v / largest))
+            .sum::<f64>()
+            .sqrt()
+}
+
 /// Relative residual `‖K x − b‖₂ / ‖b‖₂` (0 when `b = 0` and `K x = 0`).
 pub fn relative_residual(kx: &[f64], b: &[f64]) -> f64 {
-    let r: f64 = kx
-        .iter()
-        .zip(b)
-        .map(|(a, c)| (a - c) * (a - c))
-        .sum::<f64>()
-        .sqrt();
-    let nb: f64 = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let r = norm2(kx.iter().zip(b).map(|(a, c)| a - c));
+    let nb = norm2(b.iter().copied());
     if nb > 0.0 {
         r / nb
     } else if r == 0.0 {
@@ -382,6 +398,20 @@ pub fn relative_residual(kx: &[f64], b: &[f64]) -> f64 {
 mod tests {
     use super::*;
     use faer::sparse::linalg::cholesky::CholeskySymbolicParams;
+
+    #[test]
+    fn norm2_neither_overflows_nor_underflows() {
+        let big = [3e200, 4e200];
+        assert!((norm2(big.iter().copied()) / 5e200 - 1.0).abs() < 1e-15);
+        let small = [3e-200, 4e-200];
+        assert!((norm2(small.iter().copied()) / 5e-200 - 1.0).abs() < 1e-15);
+        assert_eq!(norm2([0.0, 0.0].iter().copied()), 0.0);
+        assert!(norm2([1.0, f64::NAN, 2.0].iter().copied()).is_nan());
+        assert_eq!(norm2([1.0, f64::INFINITY].iter().copied()), f64::INFINITY);
+        assert!(
+            (relative_residual(&[1e160, 2e160], &[1e160, 1e160]) - 0.5f64.sqrt()).abs() < 1e-15
+        );
+    }
     use faer::sparse::linalg::SupernodalThreshold;
     use faer::sparse::SymbolicSparseColMatRef;
 
