@@ -30,6 +30,7 @@ pub const DEFAULT_SCENE: &str = include_str!("../../validation/bimaterial_bar/st
 
 /// Parses scene text; `json` selects JSON instead of TOML.
 pub fn parse_spec(text: &str, json: bool) -> Result<SceneSpec, InputError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if json {
         let de = &mut serde_json::Deserializer::from_str(text);
         serde_path_to_error::deserialize(de).map_err(|e| {
@@ -71,8 +72,8 @@ const MAX_SCENE_BYTES: u64 = 16 << 20;
 pub const MAX_POINT_FILE_BYTES: u64 = 4 << 30;
 
 /// Reads a text input file: regular files only (a pipe or a device would hang
-/// or never end), at most `max_bytes`, UTF-8 (a leading byte-order mark is
-/// dropped; UTF-16 is recognised and named). `field` names the input in errors.
+/// or never end), at most `max_bytes`, UTF-8 (UTF-16 is recognised and named;
+/// the parsers skip a leading byte-order mark). `field` names the input in errors.
 pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
     use std::io::Read;
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
@@ -114,8 +115,7 @@ pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String
     let utf16 = bytes.starts_with(&[0xFF, 0xFE])
         || bytes.starts_with(&[0xFE, 0xFF])
         || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));
-    let body = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(&bytes);
-    match std::str::from_utf8(body) {
+    match std::str::from_utf8(&bytes) {
         Ok(text) => Ok(text.to_string()),
         Err(_) if utf16 => Err(InputError::new(
             field,
