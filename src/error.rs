@@ -108,14 +108,17 @@ pub enum NumericalError {
     /// The linear system has no free degree of freedom.
     #[error("every degree of freedom is prescribed: nothing to solve")]
     NothingToSolve,
-    /// The factorisation would not fit in memory (known after the symbolic analysis).
+    /// A large structure (the bonds, the stiffness pattern, the sparse factor)
+    /// would not fit in memory; known before it is allocated.
     #[error(
-        "the sparse factor would need {}, more than the {} allowed by {limited_by}; \
+        "{what} would need {}, more than the {} allowed by {limited_by}; \
          use a coarser spacing or a smaller horizon factor",
         human_bytes(*needed_bytes as f64),
         human_bytes(*limit_bytes)
     )]
     TooLarge {
+        /// What would be allocated, with its size in its own terms.
+        what: String,
         needed_bytes: usize,
         limit_bytes: f64,
         limited_by: MemoryLimit,

@@ -37,6 +37,53 @@ box = { min = [0.0], max = [0.01] }
 displacement = { x = 0.0 }
 "#;
 
+/// A coarse region whose horizon (19 spacings) covers a region ten times finer:
+/// about three times the bonds an estimate from each point's own spacing
+/// expects, more than the memory limit allows.
+const COARSE_OVER_FINE: &str = r#"[model]
+dimension = "plane_stress"
+[materials.m]
+youngs_modulus = 1e9
+[[regions]]
+material = "m"
+spacing = 0.001
+box = { min = [0.0, 0.0], max = [0.1, 0.1] }
+[[regions]]
+material = "m"
+spacing = 0.01
+horizon_factor = 19.0
+box = { min = [0.1, 0.0], max = [0.2, 0.1] }
+[[boundary]]
+name = "left"
+box = { min = [0.0, 0.0], max = [0.003, 0.1] }
+displacement = { x = 0.0, y = 0.0 }
+[solver]
+memory_limit_gib = 0.02
+"#;
+
+/// A 16³-point cube whose bonds (18 MiB) and pattern (about 100 MiB) fit in
+/// the limit and whose Cholesky factor (337 MiB) does not.
+const CUBE_3D: &str = r#"[model]
+dimension = "3d"
+[materials.m]
+youngs_modulus = 1e9
+[[regions]]
+material = "m"
+spacing = 0.01
+box = { min = [0.0, 0.0, 0.0], max = [0.16, 0.16, 0.16] }
+[[boundary]]
+name = "left"
+box = { min = [0.0, 0.0, 0.0], max = [0.01, 0.16, 0.16] }
+displacement = { x = 0.0, y = 0.0, z = 0.0 }
+[[loads]]
+name = "pull"
+kind = "traction"
+face = "+x"
+value = [1.0e6, 0.0, 0.0]
+[solver]
+memory_limit_gib = 0.12
+"#;
+
 /// A point file `pts.xyz` next to the scene, default material `soft`.
 const PF: &str = "\n[[point_files]]\npath = \"pts.xyz\"\nmaterial = \"soft\"\n";
 
@@ -208,7 +255,12 @@ const CASES: &[Case] = &[
     c("every_dof_prescribed", &[Rep("min = [0.0, 0.0], max = [0.01, 0.1]", "min = [0.0, 0.0], max = [0.2, 0.1]")], None, 3, &["every degree of freedom is prescribed"]),
     c("isolated_point_default_policy", &[Add(PF)], Some("1.0 1.0 1e-6\n"), 3, &["discretization.isolated_points", "point"]),
     c("point_held_by_a_single_bond", &[Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["non-positive pivot at point 200", "component 1"]),
-    c("factor_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 1e-6\n")], None, 3, &["would need", "solver.memory_limit_gib"]),
+    // Every large structure is checked before it is allocated: the bonds (an
+    // estimate, then the running count), the stiffness pattern, the factor.
+    c("bonds_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 1e-4\n")], None, 3, &["the bonds (an estimated", "would need", "solver.memory_limit_gib"]),
+    c("bonds_counted_above_memory_limit", &[Whole(COARSE_OVER_FINE)], None, 3, &["the bonds (more than", "solver.memory_limit_gib"]),
+    c("pattern_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 3e-4\n")], None, 3, &["the stiffness pattern", "solver.memory_limit_gib"]),
+    c("factor_above_memory_limit", &[Whole(CUBE_3D)], None, 3, &["the sparse factor would need", "solver.memory_limit_gib"]),
     c("memory_limit_not_positive", &[Add("\n[solver]\nmemory_limit_gib = -1.0\n")], None, 2, &["solver.memory_limit_gib"]),
     c("memory_limit_nan_string", &[Add("\n[solver]\nmemory_limit_gib = \"lots\"\n")], None, 2, &["solver.memory_limit_gib"]),
     // --- `dhpd check` (validation only) rejects what it can see ---

@@ -10,12 +10,24 @@ use crate::scene::Prescribed;
 pub const PRESCRIBED: u32 = u32::MAX;
 
 /// A named set of constrained points, for reaction forces.
+///
+/// Sets may overlap (a point may be selected by several boundary boxes when
+/// their values agree). Each prescribed component of a point belongs to the
+/// **first** set, in scene order, that prescribes it: that set's reaction
+/// counts it and no later set does. The reactions of all sets therefore sum to
+/// the total force of the supports, each support force counted once; a set
+/// nested in an earlier one that prescribes the same components reports zero.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ConstrainedSet {
     /// Name from the scene.
     pub name: String,
     /// Points in the set.
     pub points: Vec<usize>,
+    /// The `(point, component)` pairs this set prescribes first (it owns their reaction).
+    pub owned: Vec<(u32, u8)>,
+    /// `(earlier set, components)`: prescribed components of this set that an
+    /// earlier set already prescribes (and whose reaction it counts).
+    pub shared_with: Vec<(usize, usize)>,
 }
 
 /// The mapping between point components and free unknowns.
@@ -48,6 +60,7 @@ impl DofMap {
                 return Err(InputError::new(format!("boundary[{k}].box"), format!(
                     "selects no point (\"{}\"); enlarge the box so that it holds at least one point layer", bc.name)));
             }
+            let mut shared = vec![0usize; k];
             for &i in &selected {
                 for c in 0..d {
                     if let Some(v) = bc.values[c] {
@@ -57,7 +70,8 @@ impl DofMap {
                                     "point {i} at {:?} is also in boundary[{other}] with a different value \
                                      for component {c} ({old} vs {v}); a degree of freedom takes one value", points.x[i])));
                             }
-                            _ => value[i][c] = Some((v, k)),
+                            Some((_, other)) => shared[other] += 1,
+                            None => value[i][c] = Some((v, k)),
                         }
                     }
                 }
@@ -65,6 +79,12 @@ impl DofMap {
             sets.push(ConstrainedSet {
                 name: bc.name.clone(),
                 points: selected,
+                owned: Vec::new(),
+                shared_with: shared
+                    .into_iter()
+                    .enumerate()
+                    .filter(|&(_, n)| n > 0)
+                    .collect(),
             });
         }
         let mut free_index = vec![PRESCRIBED; 3 * n];
@@ -73,7 +93,10 @@ impl DofMap {
         for i in 0..n {
             for c in 0..d {
                 match value[i][c] {
-                    Some((v, _)) => prescribed[i][c] = v,
+                    Some((v, k)) => {
+                        prescribed[i][c] = v;
+                        sets[k].owned.push((i as u32, c as u8));
+                    }
                     None => {
                         free_index[3 * i + c] = free_dofs.len() as u32;
                         free_dofs.push((i as u32, c as u8));
@@ -88,6 +111,22 @@ impl DofMap {
             free_dofs,
             sets,
         })
+    }
+
+    /// One note per pair of overlapping sets: which components' reactions a
+    /// later set leaves to an earlier one ([`ConstrainedSet`]).
+    pub fn overlap_notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        for set in &self.sets {
+            for &(earlier, n) in &set.shared_with {
+                notes.push(format!(
+                    "note: boundary \"{}\" prescribes {n} component(s) that boundary \"{}\" \
+                     (earlier in the scene) already prescribes; their reaction is counted in \"{}\" only",
+                    set.name, self.sets[earlier].name, self.sets[earlier].name
+                ));
+            }
+        }
+        notes
     }
 
     /// Number of free unknowns.

@@ -14,9 +14,19 @@
 use super::dofs::DofMap;
 use super::split_at_offsets;
 use crate::discretization::Discretization;
+use crate::error::NumericalError;
 use crate::model::Coupling;
+use crate::solve::{check_memory, memory_limit};
 use faer::sparse::SymbolicSparseColMatRef;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Bytes per coupled pair of points while the pattern is built (the row list
+/// and its copy in `row_points`).
+const BYTES_PER_POINT_ENTRY: f64 = 8.0;
+
+/// Bytes per matrix entry: its row index here and its value in the stiffness.
+const BYTES_PER_DOF_ENTRY: f64 = 16.0;
 
 /// Point-level pattern plus the incoming-bond index used for column filling.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,7 +72,18 @@ impl Pattern {
     }
 
     /// Builds the pattern for `coupling` on the free unknowns of `dofs`.
-    pub fn new(disc: &Discretization, dofs: &DofMap, coupling: Coupling) -> Self {
+    ///
+    /// The point-level rows are counted as they are found, and the run is
+    /// refused (`solver.memory_limit_gib` or 90 % of the available memory) as
+    /// soon as the entries found so far, expanded to `d × d` blocks of row
+    /// indices and values, would not fit: a neighbours-of-neighbours pattern of
+    /// large horizons is refused before it is built.
+    pub fn new(
+        disc: &Discretization,
+        dofs: &DofMap,
+        coupling: Coupling,
+        user_memory_limit: Option<f64>,
+    ) -> Result<Self, NumericalError> {
         let n = disc.points.len();
         let bonds = &disc.bonds;
         // Transpose of the bond CSR (all bonds, intact or not: slots are kept).
@@ -83,6 +104,28 @@ impl Pattern {
             }
         }
         let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
+        let bytes_per_entry =
+            BYTES_PER_POINT_ENTRY + (dofs.d * dofs.d) as f64 * BYTES_PER_DOF_ENTRY;
+        let max_entries = memory_limit(user_memory_limit)
+            .map_or(usize::MAX, |(limit, _)| (limit / bytes_per_entry) as usize);
+        let found = AtomicUsize::new(0);
+        let charge = |entries: usize| {
+            let total = found.fetch_add(entries, Ordering::Relaxed) + entries;
+            if total <= max_entries {
+                return Ok(());
+            }
+            check_memory(
+                || {
+                    format!(
+                        "the stiffness pattern (more than {total} coupled point pairs, up to {} \
+                         matrix entries, found before the pattern over {n} points was complete)",
+                        total * dofs.d * dofs.d
+                    )
+                },
+                total as f64 * bytes_per_entry,
+                user_memory_limit,
+            )
+        };
         // A per-thread marker array (one flag per point) deduplicates in O(1).
         let rows: Vec<Vec<u32>> = (0..n)
             .into_par_iter()
@@ -108,11 +151,12 @@ impl Pattern {
                     for &p in &r {
                         seen[p as usize] = false;
                     }
+                    charge(r.len())?;
                     r.sort_unstable();
-                    r
+                    Ok(r)
                 },
             )
-            .collect();
+            .collect::<Result<_, NumericalError>>()?;
         let mut row_offsets = Vec::with_capacity(n + 1);
         row_offsets.push(0);
         for r in &rows {
@@ -157,14 +201,14 @@ impl Pattern {
                     dest.copy_from_slice(&column[..dest.len()]);
                 }
             });
-        Pattern {
+        Ok(Pattern {
             row_offsets,
             row_points,
             in_offsets,
             in_bonds,
             col_ptr,
             row_idx,
-        }
+        })
     }
 
     /// Offsets into the value array of each point's block of columns.

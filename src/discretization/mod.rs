@@ -185,7 +185,13 @@ pub fn discretize(scene: &Scene, mut raw: Vec<RawPoint>) -> Result<Discretizatio
     let mut removed_isolated = 0;
     loop {
         let points = Points::from_raw(&raw);
-        let bonds = neighbours::find_bonds(&points, d, &scene.cracks, scene.volume_correction)?;
+        let bonds = neighbours::find_bonds(
+            &points,
+            d,
+            &scene.cracks,
+            scene.volume_correction,
+            scene.memory_limit_bytes,
+        )?;
         let touches = bonds.touch_counts(points.len());
         let isolated: Vec<usize> = (0..points.len()).filter(|&i| touches[i] == 0).collect();
         if isolated.is_empty() {

@@ -5,23 +5,56 @@ use super::{Bonds, Points};
 use crate::error::{Error, InputError};
 use crate::geometry::{crosses, norm, sub};
 use crate::scene::{Crack, VolumeCorrection};
+use crate::solve::{check_memory, memory_limit};
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+/// Bytes a bond costs while the bonds are found: the stored neighbour (4),
+/// partial-volume factor (8) and intact flag (1), and the per-owner list the
+/// search builds them in (16).
+pub const BYTES_PER_BOND: f64 = 29.0;
 
 /// Finds every bond `i → j` with a positive partial-volume factor (for the
 /// `overlap` rule: `|x_j − x_i| < δ_i + r_j`, otherwise `≤ δ_i`) that crosses no
 /// crack; each owner's bonds are sorted by neighbour index.
+///
+/// Memory is checked before it is used (`solver.memory_limit_gib` or 90 % of
+/// the available memory): first against an estimate of the bonds from each
+/// point's horizon and spacing, then, during the search, against the bonds
+/// found so far, so a horizon that bonds far more points than the estimate
+/// (a coarse horizon over a fine region) is refused before the lists grow.
 pub fn find_bonds(
     points: &Points,
     d: usize,
     cracks: &[Crack],
     rule: VolumeCorrection,
+    user_memory_limit: Option<f64>,
 ) -> Result<Bonds, Error> {
     let pv = PartialVolume { rule, d };
+    let estimate = estimated_bonds(points, d, pv);
+    check_memory(
+        || {
+            format!(
+                "the bonds (an estimated {estimate:.3e} from the horizons and spacings, {:.0} per \
+                 point)",
+                estimate / points.len() as f64
+            )
+        },
+        estimate * BYTES_PER_BOND,
+        user_memory_limit,
+    )?;
+    let limit = memory_limit(user_memory_limit).map(|(bytes, _)| bytes);
+    let budget = Budget {
+        max_bonds: limit.map_or(usize::MAX, |b| (b / BYTES_PER_BOND) as usize),
+        user_memory_limit,
+        points: points.len(),
+        found: AtomicUsize::new(0),
+    };
     let families = match d {
-        1 => families::<1>(points, cracks, pv),
-        2 => families::<2>(points, cracks, pv),
-        _ => families::<3>(points, cracks, pv),
+        1 => families::<1>(points, cracks, pv, &budget),
+        2 => families::<2>(points, cracks, pv, &budget),
+        _ => families::<3>(points, cracks, pv, &budget),
     }?;
     let mut offsets = Vec::with_capacity(points.len() + 1);
     offsets.push(0);
@@ -37,10 +70,56 @@ pub fn find_bonds(
     }
     Ok(Bonds {
         offsets,
-        intact: vec![true; neighbour.len()],
+        intact: vec![true; total],
         neighbour,
         volume_factor,
     })
+}
+
+/// Expected number of bonds: each point's ball of radius `δ_i + reach`
+/// filled at its own spacing (boundaries ignored, so an over-estimate on
+/// uniform grids; a coarse horizon over finer points is caught by the count).
+fn estimated_bonds(points: &Points, d: usize, pv: PartialVolume) -> f64 {
+    let ball = match d {
+        1 => 2.0,
+        2 => std::f64::consts::PI,
+        _ => 4.0 / 3.0 * std::f64::consts::PI,
+    };
+    (0..points.len())
+        .map(|i| {
+            let h = points.spacing[i];
+            ball * ((points.horizon[i] + pv.reach(h)) / h).powi(d as i32)
+        })
+        .sum()
+}
+
+/// The running count of bonds found against the memory limit.
+struct Budget {
+    max_bonds: usize,
+    user_memory_limit: Option<f64>,
+    points: usize,
+    found: AtomicUsize,
+}
+
+impl Budget {
+    /// Adds `bonds` to the count; refuses once the count exceeds the limit.
+    fn charge(&self, bonds: usize) -> Result<(), Error> {
+        let total = self.found.fetch_add(bonds, Ordering::Relaxed) + bonds;
+        if total <= self.max_bonds {
+            return Ok(());
+        }
+        check_memory(
+            || {
+                format!(
+                    "the bonds (more than {total} found before the search over {} points ended)",
+                    self.points
+                )
+            },
+            total as f64 * BYTES_PER_BOND,
+            self.user_memory_limit,
+        )?;
+        Ok(())
+    }
 }
 
 type Family = Vec<(u32, f64)>;
@@ -49,6 +128,7 @@ fn families<const K: usize>(
     points: &Points,
     cracks: &[Crack],
     pv: PartialVolume,
+    budget: &Budget,
 ) -> Result<Vec<Family>, Error> {
     let reach = points
         .spacing
@@ -103,6 +183,7 @@ fn families<const K: usize>(
                     family.push((j as u32, factor));
                 }
             }
+            budget.charge(family.len())?;
             family.sort_unstable_by_key(|&(j, _)| j);
             Ok(family)
         })

@@ -72,7 +72,8 @@ pub struct Reaction {
     pub name: String,
     /// Number of points in the set.
     pub points: usize,
-    /// Sum over the set of `K u − f_ext` (N).
+    /// Sum of `K u − f_ext` over the prescribed components the set owns (N);
+    /// zero for components it does not prescribe or shares with an earlier set.
     pub force: [f64; 3],
 }
 
@@ -147,6 +148,7 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, Error> {
     let disc = discretization::discretize(scene, raw)?;
     timings.neighbour_search = t.elapsed().as_secs_f64();
     let dofs = DofMap::new(&disc.points, disc.d, &scene.boundaries)?;
+    dofs.overlap_notes().iter().for_each(|n| eprintln!("{n}"));
     let (f_ext, loads) = external_forces(&disc.points, disc.d, &scene.loads)?;
     if dofs.n_free() == 0 {
         return Err(NumericalError::NothingToSolve.into());
@@ -340,7 +342,9 @@ pub fn right_hand_side<M: Model>(
 
 /// The reaction of every constrained set for displacements `u` under the
 /// external forces `f_ext` scaled by `load_factor`: the force the supports
-/// exert on the body, `−Σ_set (F_int + f_ext)` (formulation Sec. 7). Only the
+/// exert on the body, `−Σ (F_int + f_ext)` over the prescribed components the
+/// set owns (formulation Sec. 7; overlapping sets: [`crate::assembly::dofs::ConstrainedSet`]), so the
+/// reactions of all sets sum to the total support force. Only the
 /// bonds touching the sets are evaluated (`pattern` holds the incoming bonds).
 pub fn reactions<M: Model>(
     model: &M,
@@ -356,11 +360,16 @@ pub fn reactions<M: Model>(
         .map(|set| {
             let f_int =
                 internal_forces_on(model, disc, u, true, &set.points, |q| pattern.incoming(q));
+            // Only the components this set owns (the first set to prescribe a
+            // component counts its reaction: `ConstrainedSet`).
             let mut force = [0.0; 3];
-            for (k, &i) in set.points.iter().enumerate() {
-                for c in 0..disc.d {
-                    force[c] -= f_int[k][c] + load_factor * f_ext[i][c];
-                }
+            for &(i, c) in &set.owned {
+                let (i, c) = (i as usize, c as usize);
+                let k = set
+                    .points
+                    .binary_search(&i)
+                    .expect("owned point in its set");
+                force[c] -= f_int[k][c] + load_factor * f_ext[i][c];
             }
             Reaction {
                 name: set.name.clone(),

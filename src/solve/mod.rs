@@ -292,33 +292,53 @@ pub fn available_memory_bytes() -> Option<usize> {
     Some(kib * 1024)
 }
 
-/// Refuses a factorisation that needs more than 90 % of the available memory
-/// or more than the user's limit (`solver.memory_limit_gib`), instead of letting
-/// the operating system kill the process half-way.
-pub fn check_memory(needed: usize, user_limit_bytes: Option<f64>) -> Result<(), NumericalError> {
-    check_memory_against(needed, user_limit_bytes, available_memory_bytes())
+/// Refuses to allocate `what` (`needed` bytes: the bonds, the stiffness
+/// pattern, a sparse factor) when it needs more than 90 % of the memory
+/// available now or more than the user's limit (`solver.memory_limit_gib`),
+/// instead of letting the allocation abort the process half-way. Called before
+/// each large structure is allocated; what earlier stages hold is no longer
+/// available, so the system limit is cumulative.
+pub fn check_memory(
+    what: impl FnOnce() -> String,
+    needed: f64,
+    user_limit_bytes: Option<f64>,
+) -> Result<(), NumericalError> {
+    check_memory_against(what, needed, user_limit_bytes, available_memory_bytes())
+}
+
+/// The limit `check_memory` applies now, in bytes, and where it comes from
+/// (`None`: no limit is known).
+pub fn memory_limit(user_limit_bytes: Option<f64>) -> Option<(f64, MemoryLimit)> {
+    limit_from(user_limit_bytes, available_memory_bytes())
+}
+
+fn limit_from(
+    user_limit_bytes: Option<f64>,
+    available: Option<usize>,
+) -> Option<(f64, MemoryLimit)> {
+    let system = available.map(|a| 0.9 * a as f64);
+    match (user_limit_bytes, system) {
+        (Some(user), Some(system)) if system < user => Some((system, MemoryLimit::Available)),
+        (Some(user), _) => Some((user, MemoryLimit::User)),
+        (None, Some(system)) => Some((system, MemoryLimit::Available)),
+        (None, None) => None,
+    }
 }
 
 fn check_memory_against(
-    needed: usize,
+    what: impl FnOnce() -> String,
+    needed: f64,
     user_limit_bytes: Option<f64>,
     available: Option<usize>,
 ) -> Result<(), NumericalError> {
-    let system = available.map(|a| 0.9 * a as f64);
-    let (limit, source) = match (user_limit_bytes, system) {
-        (Some(user), Some(system)) if system < user => (system, MemoryLimit::Available),
-        (Some(user), _) => (user, MemoryLimit::User),
-        (None, Some(system)) => (system, MemoryLimit::Available),
-        (None, None) => return Ok(()),
-    };
-    if needed as f64 > limit {
-        Err(NumericalError::TooLarge {
-            needed_bytes: needed,
+    match limit_from(user_limit_bytes, available) {
+        Some((limit, source)) if needed > limit => Err(NumericalError::TooLarge {
+            what: what(),
+            needed_bytes: needed.min(usize::MAX as f64) as usize,
             limit_bytes: limit,
             limited_by: source,
-        })
-    } else {
-        Ok(())
+        }),
+        _ => Ok(()),
     }
 }
 
@@ -514,16 +534,19 @@ mod tests {
     #[test]
     fn memory_guard_uses_the_tighter_limit() {
         let gib = 1usize << 30;
-        assert!(check_memory_against(gib, None, None).is_ok());
-        assert!(check_memory_against(gib, None, Some(2 * gib)).is_ok());
-        assert!(check_memory_against(gib, Some(2.0 * gib as f64), Some(2 * gib)).is_ok());
+        let what = || "the test".to_string();
+        let g = gib as f64;
+        assert!(check_memory_against(what, g, None, None).is_ok());
+        assert!(check_memory_against(what, g, None, Some(2 * gib)).is_ok());
+        assert!(check_memory_against(what, g, Some(2.0 * g), Some(2 * gib)).is_ok());
         let refused = |user: Option<f64>, available: Option<usize>| match check_memory_against(
-            gib, user, available,
+            what, g, user, available,
         ) {
             Err(NumericalError::TooLarge {
                 needed_bytes,
                 limit_bytes,
                 limited_by,
+                ..
             }) => (needed_bytes, limit_bytes, limited_by),
             other => panic!("expected a refusal, got {other:?}"),
         };

@@ -223,10 +223,11 @@ impl Pipeline {
         surrogate: Option<BondBased>,
     ) -> Result<Self, Error> {
         let t = Instant::now();
-        let pattern = Pattern::new(disc, dofs, coupling);
+        let limit = settings.memory_limit_bytes;
+        let pattern = Pattern::new(disc, dofs, coupling, limit)?;
         let surrogate = match (settings.method, coupling, surrogate) {
             (SolverMethod::Gmres, Coupling::Family, Some(model)) => {
-                Some((Pattern::new(disc, dofs, Coupling::Star), model))
+                Some((Pattern::new(disc, dofs, Coupling::Star, limit)?, model))
             }
             _ => None,
         };
@@ -244,7 +245,11 @@ impl Pipeline {
                     _ => (Source::Matrix, pattern.symbolic()),
                 };
                 let chol = Cholesky::analyse(structure)?;
-                check_memory(chol.factor_bytes(), settings.memory_limit_bytes)?;
+                check_memory(
+                    || "the sparse factor".into(),
+                    chol.factor_bytes() as f64,
+                    settings.memory_limit_bytes,
+                )?;
                 (source, Factor::Cholesky(chol))
             }
         };
@@ -367,7 +372,11 @@ impl Pipeline {
     ) -> Result<(), Error> {
         if self.source == Source::Surrogate {
             let mut chol = Cholesky::analyse(self.pattern.symbolic())?;
-            check_memory(chol.factor_bytes(), self.settings.memory_limit_bytes)?;
+            check_memory(
+                || "the sparse factor".into(),
+                chol.factor_bytes() as f64,
+                self.settings.memory_limit_bytes,
+            )?;
             let full = k.symmetric_part(self.transpose());
             match chol.factorize(full.view(&self.pattern)) {
                 Ok(()) => {

@@ -588,10 +588,15 @@ pub struct TangentKernel {
 }
 
 impl TangentKernel {
-    /// Assembles `K` of `model` without constraints.
-    pub fn new<M: Model>(disc: Discretization, model: &M) -> Result<Self, crate::Error> {
+    /// Assembles `K` of `model` without constraints (refused, like the implicit
+    /// path's, when its pattern would not fit in memory).
+    pub fn new<M: Model>(
+        disc: Discretization,
+        model: &M,
+        user_memory_limit: Option<f64>,
+    ) -> Result<Self, crate::Error> {
         let dofs = DofMap::new(&disc.points, disc.d, &[])?;
-        let pattern = Pattern::new(&disc, &dofs, model.coupling());
+        let pattern = Pattern::new(&disc, &dofs, model.coupling(), user_memory_limit)?;
         let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
         let transpose = Stiffness::transpose_positions(&pattern);
         let x = vec![0.0; dofs.n_free()];

@@ -222,7 +222,7 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
         }
         (ModelKind::BondBased, ForceKernel::Linearised) => {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-            Box::new(TangentKernel::new(disc, &model)?)
+            Box::new(TangentKernel::new(disc, &model, scene.memory_limit_bytes)?)
         }
         (ModelKind::Shear, kernel) => {
             let model = Shear::new(
@@ -232,7 +232,7 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
                 scene.gradient_dilatation,
             )?;
             if kernel == ForceKernel::Linearised {
-                Box::new(TangentKernel::new(disc, &model)?)
+                Box::new(TangentKernel::new(disc, &model, scene.memory_limit_bytes)?)
             } else {
                 Box::new(FamilyKernel::new(disc, model, false, criterion))
             }
@@ -263,7 +263,7 @@ fn tangent_row_sums(scene: &Scene, disc: &Discretization) -> Result<Vec<[f64; 3]
     Ok(match scene.model {
         ModelKind::BondBased => {
             let model = BondBased::new(disc, scene.dimension, &scene.materials, scene.thickness);
-            TangentKernel::new(copy, &model)?.row_sums()
+            TangentKernel::new(copy, &model, scene.memory_limit_bytes)?.row_sums()
         }
         ModelKind::Shear => {
             let model = Shear::new(
@@ -272,7 +272,7 @@ fn tangent_row_sums(scene: &Scene, disc: &Discretization) -> Result<Vec<[f64; 3]
                 &scene.materials,
                 scene.gradient_dilatation,
             )?;
-            TangentKernel::new(copy, &model)?.row_sums()
+            TangentKernel::new(copy, &model, scene.memory_limit_bytes)?.row_sums()
         }
     })
 }
@@ -338,6 +338,7 @@ pub fn run(
     let n = disc.points.len();
     let d = disc.d;
     let dofs = DofMap::new(&disc.points, d, &scene.boundaries)?;
+    dofs.overlap_notes().iter().for_each(|n| eprintln!("{n}"));
     let mut per_load = Vec::new();
     let mut loads = Vec::new();
     for (k, load) in scene.loads.iter().enumerate() {
@@ -358,24 +359,17 @@ pub fn run(
         loads.extend(applied);
     }
     let loads_field = Loads { per_load };
+    // Each prescribed component once, in the set that owns it (`ConstrainedSet`).
     let mut constrained = Vec::new();
     for (k, set) in dofs.sets.iter().enumerate() {
-        for &i in &set.points {
-            for c in 0..d {
-                if let Some(value) = scene.boundaries[k].values[c] {
-                    if !constrained
-                        .iter()
-                        .any(|x: &Constrained| x.point == i as u32 && x.component == c as u8)
-                        && dofs.free_index[3 * i + c] == PRESCRIBED
-                    {
-                        constrained.push(Constrained {
-                            point: i as u32,
-                            component: c as u8,
-                            set: k as u16,
-                            value,
-                        });
-                    }
-                }
+        for &(point, component) in &set.owned {
+            if let Some(value) = scene.boundaries[k].values[component as usize] {
+                constrained.push(Constrained {
+                    point,
+                    component,
+                    set: k as u16,
+                    value,
+                });
             }
         }
     }
