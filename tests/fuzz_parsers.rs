@@ -64,7 +64,9 @@ use dhpd::drivers::static_solve;
 use dhpd::error::{Error, InputError};
 use dhpd::geometry::point_file;
 use dhpd::output::Plan;
-use dhpd::scene::{self, parse_spec, Crack, HorizonRule, LoadTarget, Material, PointFile, Scene};
+use dhpd::scene::{
+    self, parse_spec, Crack, HorizonRule, LoadTarget, Material, PointFile, Scene, Selection,
+};
 use proptest::prelude::*;
 use proptest::sample::{select, Index};
 use proptest::test_runner::TestCaseError;
@@ -336,12 +338,14 @@ fn check_scene(s: &Scene) -> Result<(), TestCaseError> {
             !s.boundaries[..k].iter().any(|o| o.name == b.name),
             "boundary[{k}].name repeated"
         );
-        check_box(
-            &b.bounds.min,
-            &b.bounds.max,
-            d,
-            &format!("boundary[{k}].box"),
-        )?;
+        match &b.selection {
+            Selection::Box(bounds) => {
+                check_box(&bounds.min, &bounds.max, d, &format!("boundary[{k}].box"))?
+            }
+            Selection::Group(name) => {
+                prop_assert!(!name.is_empty(), "boundary[{k}].group empty");
+            }
+        }
         prop_assert!(
             b.values.iter().any(Option::is_some),
             "boundary[{k}] prescribes nothing"
@@ -355,7 +359,7 @@ fn check_scene(s: &Scene) -> Result<(), TestCaseError> {
     for (k, l) in s.loads.iter().enumerate() {
         prop_assert!(valid_name(&l.name), "loads[{k}].name {:?}", l.name);
         check_point(&l.value, d, &format!("loads[{k}].value"))?;
-        if let Some(b) = &l.bounds {
+        if let Some(Selection::Box(b)) = &l.selection {
             check_box(&b.min, &b.max, d, &format!("loads[{k}].box"))?;
         }
         if let LoadTarget::Face { axis, sign } = l.target {
@@ -1547,10 +1551,10 @@ fn gap_grid_volume_or_horizon_out_of_range_is_rejected() {
             Ok(p) => {
                 let ok = |v: f64| v.is_finite() && v > 0.0;
                 assert!(
-                    p.iter().all(|p| ok(p.volume) && ok(p.horizon)),
+                    p.points.iter().all(|p| ok(p.volume) && ok(p.horizon)),
                     "accepted: volume {:e}, horizon {:e}\n{text}",
-                    p[0].volume,
-                    p[0].horizon
+                    p.points[0].volume,
+                    p.points[0].horizon
                 );
             }
             Err(e) => panic!("not an input error: {e}\n{text}"),

@@ -2,9 +2,9 @@
 //! are eliminated and the rest numbered consecutively (so a point's free
 //! degrees of freedom are adjacent columns of `K`).
 
-use crate::discretization::Points;
+use crate::discretization::{groups, Discretization};
 use crate::error::InputError;
-use crate::scene::Prescribed;
+use crate::scene::{Prescribed, Selection};
 
 /// Marker for a prescribed degree of freedom in [`DofMap::free_index`].
 pub const PRESCRIBED: u32 = u32::MAX;
@@ -48,16 +48,19 @@ pub struct DofMap {
 impl DofMap {
     /// Selects the points of each prescribed set and numbers the free unknowns.
     /// Errors on a set that selects no point and on conflicting values.
-    pub fn new(points: &Points, d: usize, boundaries: &[Prescribed]) -> Result<Self, InputError> {
+    pub fn new(disc: &Discretization, boundaries: &[Prescribed]) -> Result<Self, InputError> {
+        let (points, d) = (&disc.points, disc.d);
         let n = points.len();
         let mut value: Vec<[Option<(f64, usize)>; 3]> = vec![[None; 3]; n];
         let mut sets = Vec::with_capacity(boundaries.len());
         for (k, bc) in boundaries.iter().enumerate() {
-            let selected: Vec<usize> = (0..n)
-                .filter(|&i| bc.bounds.contains(&points.x[i]))
-                .collect();
+            let field = match bc.selection {
+                Selection::Box(_) => format!("boundary[{k}].box"),
+                Selection::Group(_) => format!("boundary[{k}].group"),
+            };
+            let selected = groups::select(disc, &bc.selection, &field)?;
             if selected.is_empty() {
-                return Err(InputError::new(format!("boundary[{k}].box"), format!(
+                return Err(InputError::new(field, format!(
                     "selects no point (\"{}\"); enlarge the box so that it holds at least one point layer", bc.name)));
             }
             let mut shared = vec![0usize; k];

@@ -1,14 +1,18 @@
 //! External forces: tractions on the outermost point layer of a face and body forces.
 //!
+//! A traction on a mesh's boundary group acts on the group's facets: each
+//! facet's area (length × thickness in 2D) times `t` goes to the point of the
+//! one cell the facet bounds, so the total force is `t` times the group's area.
+//!
 //! A traction `t` on the face with outward normal `n` (axis `a`, sign `s`) acts on
 //! the points whose coordinate `s·x_a` lies within half their spacing of the
 //! largest one among the selected points; each gets `t × V_i / h_i` (its share of
 //! the face area, `V_i/h_i` with `h_i` its spacing), so the total force is `t`
 //! times the face area covered by that layer. A body force `b` gives `b V_i`.
 
-use crate::discretization::Points;
+use crate::discretization::{groups, Discretization};
 use crate::error::InputError;
-use crate::scene::{Load, LoadTarget};
+use crate::scene::{Load, LoadTarget, Selection};
 
 /// The total force each load applies (for the summary).
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -23,30 +27,48 @@ pub struct AppliedLoad {
 
 /// Builds the external force on every point.
 pub fn external_forces(
-    points: &Points,
-    d: usize,
+    disc: &Discretization,
     loads: &[Load],
 ) -> Result<(Vec<[f64; 3]>, Vec<AppliedLoad>), InputError> {
+    let (points, d) = (&disc.points, disc.d);
     let n = points.len();
     let mut f = vec![[0.0; 3]; n];
     let mut applied = Vec::with_capacity(loads.len());
     for (k, load) in loads.iter().enumerate() {
-        let selected: Vec<usize> = (0..n)
-            .filter(|&i| {
-                load.bounds
-                    .as_ref()
-                    .is_none_or(|b| b.contains(&points.x[i]))
-            })
-            .collect();
+        let field = match load.selection {
+            Some(Selection::Group(_)) => format!("loads[{k}].group"),
+            _ => format!("loads[{k}].box"),
+        };
+        let selected = match &load.selection {
+            Some(selection) => groups::select(disc, selection, &field)?,
+            None => (0..n).collect(),
+        };
         if selected.is_empty() {
             return Err(InputError::new(
-                format!("loads[{k}].box"),
+                field,
                 format!("selects no point (\"{}\")", load.name),
             ));
         }
         let mut total = [0.0; 3];
         let mut count = 0;
         match load.target {
+            LoadTarget::Facets => {
+                let Some(Selection::Group(name)) = &load.selection else {
+                    return Err(InputError::new(field, "a facet traction needs a group"));
+                };
+                let facets = groups::facets(disc, name, &field)?;
+                let mut loaded = vec![false; n];
+                for (i, area) in facets {
+                    for c in 0..d {
+                        let fc = load.value[c] * area;
+                        f[i][c] += fc;
+                        total[c] += fc;
+                    }
+                    finite(k, &f[i], i)?;
+                    count += usize::from(!loaded[i]);
+                    loaded[i] = true;
+                }
+            }
             LoadTarget::Volume => {
                 for &i in &selected {
                     for c in 0..d {

@@ -70,7 +70,7 @@ fn check(path: &Path) -> Result<(), Error> {
         // An explicit run may have a free body: no rigid-motion check.
         let disc = dhpd::discretization::build(&scene)?;
         Plan::new(&scene, &disc)?;
-        dhpd::assembly::dofs::DofMap::new(&disc.points, disc.d, &scene.boundaries)?;
+        dhpd::assembly::dofs::DofMap::new(&disc, &scene.boundaries)?;
         println!(
             "{}: valid ({} points, {} bonds; explicit dynamics)",
             path.display(),

@@ -11,13 +11,16 @@
 //! default counts the exact overlap of each neighbour's equivalent disc or ball
 //! with the horizon, so bonds reach up to `δ_i + r_j`.
 
+pub mod groups;
 mod neighbours;
 pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::grid::{self, RawPoint};
+use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::{norm, point_file, sub};
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
+use groups::PointGroup;
 use std::ops::Range;
 
 /// Per-point data, structure of arrays.
@@ -113,18 +116,29 @@ pub struct Discretization {
     pub bonds: Bonds,
     /// Number of isolated points removed (policy `remove`).
     pub removed_isolated: usize,
+    /// Named point sets from the physical groups of imported meshes.
+    pub groups: Vec<PointGroup>,
+}
+
+/// The points of a scene before bonds are found, with the named groups of its meshes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawBody {
+    /// Points of every region, point file and mesh, holes removed.
+    pub points: Vec<RawPoint>,
+    /// Physical groups of the meshes, by cell.
+    pub mesh_groups: Vec<MeshGroup>,
 }
 
 /// Builds the points of a scene (grids, point files, holes, horizon mode) and their bonds.
 pub fn build(scene: &Scene) -> Result<Discretization, Error> {
-    let raw = generate_points(scene)?;
-    discretize(scene, raw)
+    discretize(scene, generate_points(scene)?)
 }
 
 /// Generates the raw points of the scene, holes removed, horizons set.
-pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
+pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     let d = scene.d();
     let mut raw: Vec<RawPoint> = Vec::new();
+    let mut mesh_groups = Vec::new();
     for (k, region) in scene.regions.iter().enumerate() {
         raw.extend(grid::fill(region, k, d, scene.thickness));
     }
@@ -143,6 +157,11 @@ pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
             &scene.materials,
         )?);
     }
+    for (k, file) in scene.meshes.iter().enumerate() {
+        let mesh = mesh_file::import(file, k, d, scene.thickness)?;
+        raw.extend(mesh.points);
+        mesh_groups.extend(mesh.groups);
+    }
     raw.retain(|p| {
         !scene
             .holes
@@ -157,7 +176,10 @@ pub fn generate_points(scene: &Scene) -> Result<Vec<RawPoint>, Error> {
         let largest = raw.iter().map(|p| p.horizon).fold(0.0, f64::max);
         raw.iter_mut().for_each(|p| p.horizon = largest);
     }
-    Ok(raw)
+    Ok(RawBody {
+        points: raw,
+        mesh_groups,
+    })
 }
 
 /// Rejects points at identical positions, naming where both come from.
@@ -180,8 +202,12 @@ fn reject_duplicates(raw: &[RawPoint]) -> Result<(), InputError> {
 }
 
 /// Builds bonds for given points, applying the isolated-point policy.
-pub fn discretize(scene: &Scene, mut raw: Vec<RawPoint>) -> Result<Discretization, Error> {
+pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error> {
     let d = scene.d();
+    let RawBody {
+        points: mut raw,
+        mesh_groups,
+    } = body;
     let mut removed_isolated = 0;
     loop {
         let points = Points::from_raw(&raw);
@@ -197,6 +223,7 @@ pub fn discretize(scene: &Scene, mut raw: Vec<RawPoint>) -> Result<Discretizatio
         if isolated.is_empty() {
             return Ok(Discretization {
                 d,
+                groups: groups::resolve(&mesh_groups, &raw),
                 points,
                 bonds,
                 removed_isolated,

@@ -147,9 +147,9 @@ pub fn prepare(scene: &Scene) -> Result<Prepared, Error> {
     let t = Instant::now();
     let disc = discretization::discretize(scene, raw)?;
     timings.neighbour_search = t.elapsed().as_secs_f64();
-    let dofs = DofMap::new(&disc.points, disc.d, &scene.boundaries)?;
+    let dofs = DofMap::new(&disc, &scene.boundaries)?;
     dofs.overlap_notes().iter().for_each(|n| eprintln!("{n}"));
-    let (f_ext, loads) = external_forces(&disc.points, disc.d, &scene.loads)?;
+    let (f_ext, loads) = external_forces(&disc, &scene.loads)?;
     if dofs.n_free() == 0 {
         return Err(NumericalError::NothingToSolve.into());
     }

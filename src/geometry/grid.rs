@@ -26,6 +26,8 @@ pub enum Source {
     Region(u32),
     /// `point_files[k]`, 1-based line.
     File { file: u32, line: u32 },
+    /// `meshes[k]`: cell index (into the mesh's cells) and Gmsh element tag.
+    Mesh { mesh: u32, cell: u32, element: u64 },
 }
 
 impl std::fmt::Display for Source {
@@ -33,6 +35,7 @@ impl std::fmt::Display for Source {
         match self {
             Source::Region(k) => write!(f, "regions[{k}]"),
             Source::File { file, line } => write!(f, "point_files[{file}] (line {line})"),
+            Source::Mesh { mesh, element, .. } => write!(f, "meshes[{mesh}] (element {element})"),
         }
     }
 }

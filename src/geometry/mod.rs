@@ -3,7 +3,9 @@
 //!
 //! Coordinates are always `[f64; 3]`; axes beyond the scene's dimension are zero.
 
+pub mod gmsh;
 pub mod grid;
+pub mod mesh_file;
 pub mod point_file;
 
 use crate::scene::Crack;

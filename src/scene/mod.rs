@@ -17,8 +17,8 @@ pub use dynamics::{
 pub use spec::*;
 pub use validate::{
     Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,
-    Material, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region, Scene,
-    MAX_HORIZON_FACTOR,
+    Material, MeshFile, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region,
+    Scene, Selection, MAX_HORIZON_FACTOR,
 };
 
 use crate::error::{Error, InputError};
@@ -71,10 +71,9 @@ const MAX_SCENE_BYTES: u64 = 16 << 20;
 /// Largest point file read, in bytes.
 pub const MAX_POINT_FILE_BYTES: u64 = 4 << 30;
 
-/// Reads a text input file: regular files only (a pipe or a device would hang
-/// or never end), at most `max_bytes`, UTF-8 (UTF-16 is recognised and named;
-/// the parsers skip a leading byte-order mark). `field` names the input in errors.
-pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
+/// Reads an input file's bytes: regular files only (a pipe or a device would
+/// hang or never end), at most `max_bytes`. `field` names the input in errors.
+pub fn read_input_file(path: &Path, field: &str, max_bytes: u64) -> Result<Vec<u8>, Error> {
     use std::io::Read;
     let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
     if !meta.is_file() {
@@ -112,6 +111,13 @@ pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String
         )
         .into());
     }
+    Ok(bytes)
+}
+
+/// Reads a text input file ([`read_input_file`]) as UTF-8 (UTF-16 is recognised
+/// and named; the parsers skip a leading byte-order mark).
+pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
+    let bytes = read_input_file(path, field, max_bytes)?;
     let utf16 = bytes.starts_with(&[0xFF, 0xFE])
         || bytes.starts_with(&[0xFE, 0xFF])
         || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));

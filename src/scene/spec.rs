@@ -26,6 +26,9 @@ pub struct SceneSpec {
     /// Point clouds read from text files.
     #[serde(default)]
     pub point_files: Vec<PointFileSpec>,
+    /// Gmsh meshes (MSH 4.1): one point per element.
+    #[serde(default)]
+    pub meshes: Vec<MeshSpec>,
     /// Circular (2D) or spherical (3D) holes: points inside are removed.
     #[serde(default)]
     pub holes: Vec<HoleSpec>,
@@ -273,6 +276,24 @@ pub struct PointFileSpec {
     pub horizon_factor: Option<f64>,
 }
 
+/// `[[meshes]]`: a Gmsh MSH 4.1 file (ASCII or binary); every element of the
+/// scene's dimension becomes a point at its centroid with its area × thickness
+/// (2D) or volume (3D).
+#[derive(Debug, Clone, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Path, relative to the scene file.
+    pub path: String,
+    /// Material of the cells in no group of `groups`.
+    pub material: Option<String>,
+    /// Physical group (of the scene's dimension) → material, for its cells.
+    #[serde(default)]
+    pub groups: BTreeMap<String, String>,
+    /// Horizon factor times the cell's equivalent spacing (measure^(1/d));
+    /// default `discretization.horizon_factor`.
+    pub horizon_factor: Option<f64>,
+}
+
 /// `[[holes]]`
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -319,9 +340,11 @@ pub struct ComponentsSpec {
 pub struct BoundarySpec {
     /// Name used for the reaction force in the summary.
     pub name: String,
-    /// Points inside this box (inclusive) are constrained.
+    /// Points inside this box (inclusive) are constrained (this or `group`).
     #[serde(rename = "box")]
-    pub bounds: BoxSpec,
+    pub bounds: Option<BoxSpec>,
+    /// The points of a mesh's physical group (this or `box`).
+    pub group: Option<String>,
     /// Prescribed components in m (this or `velocity`).
     pub displacement: Option<ComponentsSpec>,
     /// Explicit dynamics: prescribed velocity components in m/s (this or `displacement`).
@@ -457,11 +480,15 @@ pub struct LoadSpec {
     pub name: String,
     /// `"traction"` or `"body_force"`.
     pub kind: LoadKind,
-    /// Traction: the face's outward normal, one of `-x +x -y +y -z +z`.
+    /// Traction: the face's outward normal, one of `-x +x -y +y -z +z`
+    /// (or `group`).
     pub face: Option<String>,
     /// Restrict to the points in this box (body force: default whole body).
     #[serde(rename = "box")]
     pub bounds: Option<BoxSpec>,
+    /// A mesh's physical group: a traction acts on its boundary facets (a group
+    /// of dimension d − 1), a body force on its cells (dimension d).
+    pub group: Option<String>,
     /// Traction vector (Pa) or body force density (N/m³), one entry per dimension.
     pub value: Vec<f64>,
     /// Explicit dynamics: the load is multiplied by this function of time

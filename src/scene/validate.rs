@@ -122,6 +122,31 @@ pub struct PointFile {
     pub horizon_factor: f64,
 }
 
+/// A validated Gmsh mesh reference (`[[meshes]]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshFile {
+    /// Resolved path.
+    pub path: PathBuf,
+    /// Name of the field in the scene, for error messages (`meshes[0]`).
+    pub field: String,
+    /// Material of the cells in no mapped group.
+    pub material: Option<usize>,
+    /// `(physical group name, material)` pairs.
+    pub groups: Vec<(String, usize)>,
+    /// Horizon factor times each cell's equivalent spacing.
+    pub horizon_factor: f64,
+}
+
+/// Which points a boundary condition or a load selects.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Selection {
+    /// The points inside a box.
+    Box(Aabb),
+    /// The points of a mesh's physical group (its cells, or the cells touching
+    /// a lower-dimensional group).
+    Group(String),
+}
+
 /// A hole: points whose centre is strictly inside are removed.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hole {
@@ -144,13 +169,13 @@ pub enum Crack {
     },
 }
 
-/// Prescribed displacement on the points of a box.
+/// Prescribed displacement on a set of points.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Prescribed {
     /// Name for the reaction report.
     pub name: String,
     /// Selected points.
-    pub bounds: Aabb,
+    pub selection: Selection,
     /// Prescribed value per component (`None` = free).
     pub values: [Option<f64>; 3],
 }
@@ -162,6 +187,9 @@ pub enum LoadTarget {
     Face { axis: usize, sign: f64 },
     /// Every selected point, in proportion to its volume.
     Volume,
+    /// The boundary facets of a mesh group (dimension d − 1): each facet's
+    /// traction × area goes to the cell it bounds.
+    Facets,
 }
 
 /// A validated load.
@@ -171,8 +199,8 @@ pub struct Load {
     pub name: String,
     /// Face or volume.
     pub target: LoadTarget,
-    /// Restricting box (None = whole body).
-    pub bounds: Option<Aabb>,
+    /// Restricting selection (None = whole body).
+    pub selection: Option<Selection>,
     /// Traction (Pa) or force density (N/m³).
     pub value: [f64; 3],
 }
@@ -243,6 +271,8 @@ pub struct Scene {
     pub regions: Vec<Region>,
     /// Point files.
     pub point_files: Vec<PointFile>,
+    /// Gmsh meshes.
+    pub meshes: Vec<MeshFile>,
     /// Holes.
     pub holes: Vec<Hole>,
     /// Pre-cracks.
@@ -459,10 +489,53 @@ impl Scene {
                 horizon_factor: factor,
             });
         }
-        if regions.is_empty() && point_files.is_empty() {
+        let mut meshes = Vec::new();
+        for (k, m) in spec.meshes.iter().enumerate() {
+            let f = format!("meshes[{k}]");
+            if m.path.trim().is_empty() {
+                return Err(InputError::new(format!("{f}.path"), "empty path"));
+            }
+            if d == 1 {
+                return Err(InputError::new(
+                    f,
+                    "meshes need 2D or 3D (triangles, quadrangles, tetrahedra, hexahedra)",
+                ));
+            }
+            let material = m
+                .material
+                .as_deref()
+                .map(|name| material_index(&format!("{f}.material"), name))
+                .transpose()?;
+            let groups = m
+                .groups
+                .iter()
+                .map(|(group, name)| {
+                    Ok((
+                        group.clone(),
+                        material_index(&format!("{f}.groups.{group}"), name)?,
+                    ))
+                })
+                .collect::<Result<Vec<_>, InputError>>()?;
+            if material.is_none() && groups.is_empty() {
+                return Err(InputError::new(
+                    format!("{f}.material"),
+                    "missing: give the cells' material, or `groups` mapping physical groups to materials",
+                ));
+            }
+            let factor = m.horizon_factor.unwrap_or(horizon_factor);
+            check_horizon_factor(&format!("{f}.horizon_factor"), factor)?;
+            meshes.push(MeshFile {
+                path: base.join(&m.path),
+                field: f,
+                material,
+                groups,
+                horizon_factor: factor,
+            });
+        }
+        if regions.is_empty() && point_files.is_empty() && meshes.is_empty() {
             return Err(InputError::new(
                 "regions",
-                "the scene has no points: add [[regions]] or [[point_files]]",
+                "the scene has no points: add [[regions]], [[point_files]] or [[meshes]]",
             ));
         }
 
@@ -511,16 +584,35 @@ impl Scene {
                     ))
                 }
             };
+            let selection = match (&b.bounds, &b.group) {
+                (Some(bounds), None) => Selection::Box(aabb(&format!("{f}.box"), bounds, d)?),
+                (None, Some(group)) => {
+                    mesh_group(&format!("{f}.group"), group, &meshes)?;
+                    Selection::Group(group.clone())
+                }
+                (Some(_), Some(_)) => {
+                    return Err(InputError::new(
+                        format!("{f}.group"),
+                        "give either box or group, not both",
+                    ))
+                }
+                (None, None) => {
+                    return Err(InputError::new(
+                        format!("{f}.box"),
+                        "missing: select the points with a box (or a mesh's physical group)",
+                    ))
+                }
+            };
             boundaries.push(Prescribed {
                 name: b.name.clone(),
-                bounds: aabb(&format!("{f}.box"), &b.bounds, d)?,
+                selection,
                 values,
             });
         }
 
         let mut loads = Vec::new();
         for (k, l) in spec.loads.iter().enumerate() {
-            loads.push(load(&format!("loads[{k}]"), l, d)?);
+            loads.push(load(&format!("loads[{k}]"), l, d, &meshes)?);
         }
 
         let output = output(&spec.output, d)?;
@@ -593,6 +685,7 @@ impl Scene {
             materials,
             regions,
             point_files,
+            meshes,
             holes,
             cracks,
             boundaries,
@@ -1117,15 +1210,46 @@ fn crack(field: &str, c: &CrackSpec, d: usize) -> Result<Crack, InputError> {
     }
 }
 
-fn load(field: &str, l: &LoadSpec, d: usize) -> Result<Load, InputError> {
+/// Checks that `group` names a physical group a mesh can provide: with no mesh
+/// in the scene it cannot (the name itself is checked when the meshes are read).
+fn mesh_group(field: &str, group: &str, meshes: &[MeshFile]) -> Result<(), InputError> {
+    if meshes.is_empty() {
+        return Err(InputError::new(
+            field,
+            format!("\"{group}\": physical groups come from [[meshes]], and the scene has none; select with `box`"),
+        ));
+    }
+    if group.is_empty() {
+        return Err(InputError::new(field, "empty group name"));
+    }
+    Ok(())
+}
+
+fn load(field: &str, l: &LoadSpec, d: usize, meshes: &[MeshFile]) -> Result<Load, InputError> {
     name(&format!("{field}.name"), &l.name)?;
     let v = coords(&format!("{field}.value"), &l.value, d)?;
-    let bounds = l
-        .bounds
-        .as_ref()
-        .map(|b| aabb(&format!("{field}.box"), b, d))
-        .transpose()?;
+    let selection = match (&l.bounds, &l.group) {
+        (Some(b), None) => Some(Selection::Box(aabb(&format!("{field}.box"), b, d)?)),
+        (None, Some(group)) => {
+            mesh_group(&format!("{field}.group"), group, meshes)?;
+            Some(Selection::Group(group.clone()))
+        }
+        (Some(_), Some(_)) => {
+            return Err(InputError::new(
+                format!("{field}.group"),
+                "give either box or group, not both",
+            ))
+        }
+        (None, None) => None,
+    };
     let target = match (l.kind, l.face.as_deref()) {
+        (LoadKind::Traction, None) if l.group.is_some() => LoadTarget::Facets,
+        (LoadKind::Traction, Some(_)) if l.group.is_some() => {
+            return Err(InputError::new(
+                format!("{field}.face"),
+                "a traction on a group acts on the group's boundary facets: remove `face`",
+            ))
+        }
         (LoadKind::Traction, Some(face)) => {
             let axes = ["x", "y", "z"];
             let parsed = face
@@ -1148,12 +1272,10 @@ fn load(field: &str, l: &LoadSpec, d: usize) -> Result<Load, InputError> {
                 }
             }
         }
-        (LoadKind::Traction, None) => {
-            return Err(InputError::new(
-                format!("{field}.face"),
-                "a traction needs a face: one of -x, +x, -y, +y, -z, +z",
-            ))
-        }
+        (LoadKind::Traction, None) => return Err(InputError::new(
+            format!("{field}.face"),
+            "a traction needs a face (one of -x, +x, -y, +y, -z, +z) or a mesh's boundary group",
+        )),
         (LoadKind::BodyForce, None) => LoadTarget::Volume,
         (LoadKind::BodyForce, Some(_)) => {
             return Err(InputError::new(
@@ -1165,7 +1287,7 @@ fn load(field: &str, l: &LoadSpec, d: usize) -> Result<Load, InputError> {
     Ok(Load {
         name: l.name.clone(),
         target,
-        bounds,
+        selection,
         value: v,
     })
 }

@@ -70,7 +70,7 @@ pub fn disc(scene: &Scene) -> Discretization {
 
 /// The dense stiffness on all degrees of freedom (no constraint), `n d × n d`.
 pub fn dense_stiffness<M: Model>(model: &M, disc: &Discretization) -> Vec<Vec<f64>> {
-    let dofs = DofMap::new(&disc.points, disc.d, &[]).unwrap();
+    let dofs = DofMap::new(&disc, &[]).unwrap();
     let pattern = Pattern::new(disc, &dofs, model.coupling(), None).unwrap();
     let k = Stiffness::assemble(model, disc, &dofs, &pattern);
     let n = dofs.n_free();

@@ -595,7 +595,7 @@ impl TangentKernel {
         model: &M,
         user_memory_limit: Option<f64>,
     ) -> Result<Self, crate::Error> {
-        let dofs = DofMap::new(&disc.points, disc.d, &[])?;
+        let dofs = DofMap::new(&disc, &[])?;
         let pattern = Pattern::new(&disc, &dofs, model.coupling(), user_memory_limit)?;
         let stiffness = Stiffness::assemble(model, &disc, &dofs, &pattern);
         let transpose = Stiffness::transpose_positions(&pattern);

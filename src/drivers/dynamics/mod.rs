@@ -254,12 +254,7 @@ fn kernel_name(scene: &Scene) -> &'static str {
 
 /// Gershgorin row sums `Σ_c |K_rc|` of the scene's assembled tangent, per point and component.
 fn tangent_row_sums(scene: &Scene, disc: &Discretization) -> Result<Vec<[f64; 3]>, Error> {
-    let copy = Discretization {
-        d: disc.d,
-        points: disc.points.clone(),
-        bonds: disc.bonds.clone(),
-        removed_isolated: disc.removed_isolated,
-    };
+    let copy = disc.clone();
     Ok(match scene.model {
         ModelKind::BondBased => {
             let model = BondBased::new(disc, scene.dimension, &scene.materials, scene.thickness);
@@ -337,19 +332,18 @@ pub fn run(
     let disc = discretization::build(scene)?;
     let n = disc.points.len();
     let d = disc.d;
-    let dofs = DofMap::new(&disc.points, d, &scene.boundaries)?;
+    let dofs = DofMap::new(&disc, &scene.boundaries)?;
     dofs.overlap_notes().iter().for_each(|n| eprintln!("{n}"));
     let mut per_load = Vec::new();
     let mut loads = Vec::new();
     for (k, load) in scene.loads.iter().enumerate() {
-        let (f, applied) =
-            external_forces(&disc.points, d, std::slice::from_ref(load)).map_err(|e| {
-                // The single-load call numbers it 0; name the scene's entry.
-                InputError::new(
-                    e.field.replacen("loads[0]", &format!("loads[{k}]"), 1),
-                    e.message,
-                )
-            })?;
+        let (f, applied) = external_forces(&disc, std::slice::from_ref(load)).map_err(|e| {
+            // The single-load call numbers it 0; name the scene's entry.
+            InputError::new(
+                e.field.replacen("loads[0]", &format!("loads[{k}]"), 1),
+                e.message,
+            )
+        })?;
         let forces: Vec<(usize, [f64; 3])> = f
             .into_iter()
             .enumerate()
