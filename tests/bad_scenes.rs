@@ -84,6 +84,22 @@ value = [1.0e6, 0.0, 0.0]
 memory_limit_gib = 0.12
 "#;
 
+/// The bimaterial strip mesh ("soft" and "stiff" surfaces, "left" and "right"
+/// curves), read with materials from its groups, clamped on `left`, pulled on `right`.
+const MESH_STRIP: &str = concat!(
+    "[model]\ndimension = \"plane_stress\"\n",
+    "[materials.soft]\nyoungs_modulus = 1.0e9\n[materials.stiff]\nyoungs_modulus = 2.0e9\n",
+    "[[meshes]]\npath = \"",
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/plate_with_hole/gmsh/bimaterial_strip.msh\"\n",
+    "groups = { soft = \"soft\", stiff = \"stiff\" }\n",
+    "[[boundary]]\nname = \"left\"\ngroup = \"left\"\ndisplacement = { x = 0.0, y = 0.0 }\n",
+    "[[loads]]\nname = \"pull\"\nkind = \"traction\"\ngroup = \"right\"\nvalue = [1.0e6, 0.0]\n"
+);
+
+/// The strip mesh as an arbitrary file `pts.xyz` next to the scene.
+const MESH_PTS: Edit = Rep("/validation/plate_with_hole/gmsh/bimaterial_strip.msh", "");
+
 /// A point file `pts.xyz` next to the scene, default material `soft`.
 const PF: &str = "\n[[point_files]]\npath = \"pts.xyz\"\nmaterial = \"soft\"\n";
 
@@ -348,6 +364,21 @@ const CASES: &[Case] = &[
     c("probe_outside_the_body", &[Add("\n[[output.probes]]\nname = \"far\"\nat = [5.0, 5.0]\n")], None, 2, &["output.probes[0].at", "outside the body"]),
     c("output_name_too_long", &[NoOut, Rep("name = \"bad_scenes_base\"", "name = \"aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa\"")], None, 2, &["--out", "cannot create"]),
     c("youngs_modulus_overflows_the_stiffness", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e308")], None, 2, &["materials.soft.youngs_modulus", "floating-point range"]),
+    // --- mesh import ---
+    c("mesh_group_unknown", &[Whole(MESH_STRIP), Rep("group = \"left\"", "group = \"lft\"")], None, 2, &["boundary[0].group", "no physical group \"lft\"", "left, right"]),
+    c("group_without_meshes", &[Rep("box = { min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement", "group = \"left\"\ndisplacement")], None, 2, &["boundary[0].group", "[[meshes]]"]),
+    c("boundary_box_and_group", &[Whole(MESH_STRIP), Rep("group = \"left\"", "group = \"left\"\nbox = { min = [0.0, 0.0], max = [0.1, 0.1] }")], None, 2, &["boundary[0].group", "not both"]),
+    c("boundary_without_box_or_group", &[Rep("box = { min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement", "displacement")], None, 2, &["boundary[0].box", "missing"]),
+    c("traction_on_a_surface_group", &[Whole(MESH_STRIP), Rep("group = \"right\"", "group = \"stiff\"")], None, 2, &["loads[0].group", "no 1D elements"]),
+    c("traction_on_a_group_with_a_face", &[Whole(MESH_STRIP), Rep("group = \"right\"", "group = \"right\"\nface = \"+x\"")], None, 2, &["loads[0].face", "remove `face`"]),
+    c("mesh_group_mapped_to_unknown_material", &[Whole(MESH_STRIP), Rep("stiff = \"stiff\"", "stiff = \"steel\"")], None, 2, &["meshes[0].groups.stiff", "steel"]),
+    c("mesh_material_map_names_a_missing_group", &[Whole(MESH_STRIP), Rep("soft = \"soft\"", "sofft = \"soft\"")], None, 2, &["meshes[0].groups.sofft", "no 2D physical group", "soft, stiff"]),
+    c("mesh_cells_without_material", &[Whole(MESH_STRIP), Rep(", stiff = \"stiff\"", "")], None, 2, &["meshes[0]", "in no group of `groups`"]),
+    c("mesh_without_material_or_groups", &[Whole(MESH_STRIP), Rep("groups = { soft = \"soft\", stiff = \"stiff\" }\n", "")], None, 2, &["meshes[0].material", "missing"]),
+    c("mesh_file_not_a_mesh", &[Whole(MESH_STRIP), MESH_PTS, Rep(concat!(env!("CARGO_MANIFEST_DIR"), "\""), "pts.xyz\"")], Some("0.30 0.05 1e-6\n"), 2, &["meshes[0].path", "pts.xyz"]),
+    c("mesh_file_missing", &[Whole(MESH_STRIP), MESH_PTS, Rep(concat!(env!("CARGO_MANIFEST_DIR"), "\""), "missing.msh\"")], None, 4, &["missing.msh"]),
+    c("mesh_3d_read_as_2d", &[Whole(MESH_STRIP), Rep("bimaterial_strip.msh", "cube_tet_h0.25.msh"), Rep("groups = { soft = \"soft\", stiff = \"stiff\" }", "material = \"soft\"")], None, 2, &["meshes[0].path", "3D elements"]),
+    c("mesh_in_1d", &[Whole(MESH_STRIP), Rep("plane_stress", "1d")], None, 2, &["meshes[0]", "2D or 3D"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

@@ -82,8 +82,9 @@ pub struct ModelSpec {
     #[serde(default)]
     pub horizons: HorizonMode,
     /// Shear model only: `"weighted"` (001 Eq. 15, default) or `"gradient"`
-    /// (the surface correction: θ from the shape-tensor gradient, exact for
-    /// homogeneous deformation at free surfaces too).
+    /// (θ from the shape-tensor gradient, exact for homogeneous deformation at
+    /// free surfaces too; it does not remove the stiffening of the force along
+    /// a free surface: validation/bimaterial_bar/README.md).
     pub dilatation: Option<Dilatation>,
     /// Bond-based only: accept a Poisson ratio the model cannot represent
     /// (the micromodulus then matches the bulk modulus). Default false.
@@ -109,7 +110,7 @@ pub enum Dilatation {
     /// `θ = (d/m) Σ w η_r·ξ_r` (001 Eq. 15).
     #[default]
     Weighted,
-    /// `θ = Σ w η_r·(R K⁻¹ ξ)`: the surface correction.
+    /// `θ = Σ w η_r·(R K⁻¹ ξ)`: exact θ at free surfaces.
     Gradient,
 }
 

@@ -261,7 +261,7 @@ pub struct Scene {
     pub horizons: HorizonMode,
     /// Partial-volume rule.
     pub volume_correction: VolumeCorrection,
-    /// Shear model: dilatation from the shape-tensor gradient (surface correction).
+    /// Shear model: dilatation from the shape-tensor gradient (exact θ at free surfaces).
     pub gradient_dilatation: bool,
     /// Isolated-point policy.
     pub isolated_points: IsolatedPolicy,
