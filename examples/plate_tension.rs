@@ -40,58 +40,15 @@ use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
 
-/// Spacing of the left half (m).
+/// Spacing of the left half (m), as in `dhpd::validation::plate_tension_text`.
 const DX_LEFT: f64 = 0.005;
 /// Spacing of the right half (m).
 const DX_RIGHT: f64 = 0.01;
-/// Traction on the right edge (Pa).
-const TRACTION: f64 = 2e8;
 const REFERENCE: &str = "validation/plate_tension/fem/reference.json";
 const RESULTS: &str = "validation/plate_tension/results";
 
 fn scene(kind: &str, n: f64, layers: usize) -> Scene {
-    let x_f = -(layers as f64) * DX_LEFT;
-    let text = format!(
-        r#"
-        name = "plate_tension"
-        [model]
-        dimension = "plane_stress"
-        kind = "{kind}"
-        [discretization]
-        horizon_factor = {n}
-        [materials.region1]
-        youngs_modulus = 200e9
-        poisson_ratio = 0.3333333333333333
-        [materials.region2]
-        youngs_modulus = 200e9
-        poisson_ratio = 0.3333333333333333
-        # fictitious clamp region outside the plate
-        [[regions]]
-        material = "region1"
-        spacing = {DX_LEFT}
-        box = {{ min = [{x_f}, 0.0], max = [0.0, 1.0] }}
-        [[regions]]
-        material = "region1"
-        spacing = {DX_LEFT}
-        box = {{ min = [0.0, 0.0], max = [0.5, 1.0] }}
-        [[regions]]
-        material = "region2"
-        spacing = {DX_RIGHT}
-        box = {{ min = [0.5, 0.0], max = [1.0, 1.0] }}
-        [[boundary]]
-        name = "clamp"
-        box = {{ min = [{x_f}, 0.0], max = [0.0, 1.0] }}
-        displacement = {{ x = 0.0, y = 0.0 }}
-        [[loads]]
-        name = "pull"
-        kind = "traction"
-        face = "+x"
-        value = [{TRACTION}, 0.0]
-        [output]
-        vtu = false
-        points_csv = false
-        "#
-    );
+    let text = dhpd::validation::plate_tension_text(kind, n, layers);
     let spec = parse_spec(&text, false).expect("generated scene parses");
     Scene::try_from_spec(spec, Path::new("."), "plate_tension").expect("generated scene is valid")
 }

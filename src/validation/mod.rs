@@ -9,6 +9,7 @@
 //! load from there on, so that is where the deformable body begins.
 
 pub mod fracture;
+pub mod scenes;
 
 use crate::drivers::static_solve::{self, StaticSolution};
 use crate::error::Error;
@@ -52,6 +53,11 @@ impl Bimaterial {
 
     /// The scene: 1D: 3 points held at each end; 2D: every point up to the supports.
     pub fn scene(&self) -> Scene {
+        parse(&self.text(), "bimaterial")
+    }
+
+    /// The scene's TOML text.
+    pub fn text(&self) -> String {
         let (a, b) = (self.support_left(), self.support_right());
         let (left_max, right_min) = (a + 0.25 * self.dx_left, b - 0.25 * self.dx_right);
         let horizons = if self.constant_horizon {
@@ -86,7 +92,7 @@ impl Bimaterial {
                 format!("{v}")
             }
         };
-        let text = format!(
+        format!(
             r#"
             name = "bimaterial"
             [model]
@@ -120,9 +126,7 @@ impl Bimaterial {
             lmax = pad_hi(left_max),
             rmin = pad(right_min),
             u = BAR_DISPLACEMENT,
-        );
-        let spec = parse_spec(&text, false).expect("generated scene parses");
-        Scene::try_from_spec(spec, Path::new("."), "bimaterial").expect("generated scene is valid")
+        )
     }
 
     /// Solves the case.
@@ -184,16 +188,21 @@ pub const HOLE_TRACTION: f64 = 1e6;
 impl PlateWithHole {
     /// The scene (plane stress, ν = 1/3, as in the paper).
     pub fn scene(&self) -> Scene {
-        self.scene_in("plane_stress", 1.0 / 3.0)
+        parse(
+            &self.text("plane_stress", 1.0 / 3.0, false),
+            "plate_with_hole",
+        )
     }
 
     /// The same plate in plane strain with Poisson ratio `nu` (the stability
     /// suite's near-incompressible cases, `validation/stability/fem`).
     pub fn plane_strain_scene(&self, nu: f64) -> Scene {
-        self.scene_in("plane_strain", nu)
+        parse(&self.text("plane_strain", nu, false), "plate_with_hole")
     }
 
-    fn scene_in(&self, dimension: &str, nu: f64) -> Scene {
+    /// The scene's TOML text in `dimension` with Poisson ratio `nu`; `gradient`
+    /// selects the shear model's gradient dilatation.
+    pub fn text(&self, dimension: &str, nu: f64, gradient: bool) -> String {
         let h = self.spacing;
         let p = HOLE_TRACTION;
         let kind = if self.shear { "shear" } else { "bond_based" };
@@ -202,7 +211,7 @@ impl PlateWithHole {
             name = "plate_with_hole"
             [model]
             dimension = "{dimension}"
-            kind = "{kind}"
+            kind = "{kind}"{dilatation}
             [discretization]
             horizon_factor = {m}
             [materials.concrete]
@@ -237,6 +246,11 @@ impl PlateWithHole {
             m = self.horizon_factor,
             pin_x = -0.5 + h,
             roller_x = 0.5 - h,
+            dilatation = if gradient {
+                "\n            dilatation = \"gradient\""
+            } else {
+                ""
+            },
         );
         if self.load == HoleLoad::TensionCompression {
             text += &format!(
@@ -247,10 +261,64 @@ impl PlateWithHole {
         if self.shear {
             text += "[output]\nstress = true\n";
         }
-        let spec = parse_spec(&text, false).expect("generated scene parses");
-        Scene::try_from_spec(spec, Path::new("."), "plate_with_hole")
-            .expect("generated scene is valid")
+        text
     }
+}
+
+/// Plate under tension with two regions (004 Sec. 5.1): 1 m × 1 m, plane stress,
+/// E = 200 GPa, ν = 1/3, spacing 0.005 m (left half) and 0.01 m (right half),
+/// δ = n Δx of each region; the clamp is a fictitious strip of `layers` point
+/// columns outside the plate (004's boundary region), 200 MPa on the right edge.
+pub fn plate_tension_text(kind: &str, n: f64, layers: usize) -> String {
+    let (dx_left, dx_right, traction) = (0.005, 0.01, 2e8);
+    let x_f = -(layers as f64) * dx_left;
+    format!(
+        r#"
+        name = "plate_tension"
+        [model]
+        dimension = "plane_stress"
+        kind = "{kind}"
+        [discretization]
+        horizon_factor = {n}
+        [materials.region1]
+        youngs_modulus = 200e9
+        poisson_ratio = 0.3333333333333333
+        [materials.region2]
+        youngs_modulus = 200e9
+        poisson_ratio = 0.3333333333333333
+        # fictitious clamp region outside the plate
+        [[regions]]
+        material = "region1"
+        spacing = {dx_left}
+        box = {{ min = [{x_f}, 0.0], max = [0.0, 1.0] }}
+        [[regions]]
+        material = "region1"
+        spacing = {dx_left}
+        box = {{ min = [0.0, 0.0], max = [0.5, 1.0] }}
+        [[regions]]
+        material = "region2"
+        spacing = {dx_right}
+        box = {{ min = [0.5, 0.0], max = [1.0, 1.0] }}
+        [[boundary]]
+        name = "clamp"
+        box = {{ min = [{x_f}, 0.0], max = [0.0, 1.0] }}
+        displacement = {{ x = 0.0, y = 0.0 }}
+        [[loads]]
+        name = "pull"
+        kind = "traction"
+        face = "+x"
+        value = [{traction}, 0.0]
+        [output]
+        vtu = false
+        points_csv = false
+        "#
+    )
+}
+
+/// Parses and validates a generated scene (relative paths: none).
+fn parse(text: &str, name: &str) -> Scene {
+    let spec = parse_spec(text, false).expect("generated scene parses");
+    Scene::try_from_spec(spec, Path::new("."), name).expect("generated scene is valid")
 }
 
 /// Subtracts the volume-weighted mean translation and rotation (2D) from `u`.
