@@ -171,54 +171,18 @@ fn describe(v: &[f64; 6], d: usize, c: &[f64; 3], size: f64) -> String {
 }
 
 /// Eigenvalues and eigenvectors (rows of the second result) of the leading
-/// `m × m` block of a symmetric matrix, by cyclic Jacobi rotations.
+/// `m × m` block of a symmetric matrix (nalgebra's symmetric eigensolver).
 fn symmetric_eigen(a: &[[f64; 6]; 6], m: usize) -> ([f64; 6], [[f64; 6]; 6]) {
-    let mut a = *a;
-    let mut v = [[0.0; 6]; 6];
-    for (k, row) in v.iter_mut().enumerate() {
-        row[k] = 1.0;
-    }
-    for _sweep in 0..50 {
-        let off: f64 = (0..m)
-            .flat_map(|p| (0..m).filter(move |&q| q != p).map(move |q| (p, q)))
-            .map(|(p, q)| a[p][q] * a[p][q])
-            .sum();
-        let diag: f64 = (0..m).map(|p| a[p][p] * a[p][p]).sum();
-        if off <= 1e-30 * diag.max(f64::MIN_POSITIVE) {
-            break;
-        }
-        for p in 0..m {
-            for q in p + 1..m {
-                if a[p][q] == 0.0 {
-                    continue;
-                }
-                let theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
-                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
-                let t = if theta == 0.0 { 1.0 } else { t };
-                let (cs, sn) = (1.0 / (t * t + 1.0).sqrt(), t / (t * t + 1.0).sqrt());
-                for k in 0..m {
-                    let (akp, akq) = (a[k][p], a[k][q]);
-                    a[k][p] = cs * akp - sn * akq;
-                    a[k][q] = sn * akp + cs * akq;
-                }
-                for k in 0..m {
-                    let (apk, aqk) = (a[p][k], a[q][k]);
-                    a[p][k] = cs * apk - sn * aqk;
-                    a[q][k] = sn * apk + cs * aqk;
-                }
-                for k in 0..m {
-                    let (vpk, vqk) = (v[p][k], v[q][k]);
-                    v[p][k] = cs * vpk - sn * vqk;
-                    v[q][k] = sn * vpk + cs * vqk;
-                }
-            }
-        }
-    }
+    let eigen = nalgebra::DMatrix::from_fn(m, m, |r, c| a[r][c]).symmetric_eigen();
     let mut values = [0.0; 6];
+    let mut vectors = [[0.0; 6]; 6];
     for k in 0..m {
-        values[k] = a[k][k];
+        values[k] = eigen.eigenvalues[k];
+        for r in 0..m {
+            vectors[k][r] = eigen.eigenvectors[(r, k)];
+        }
     }
-    (values, v)
+    (values, vectors)
 }
 
 #[cfg(test)]
@@ -226,7 +190,7 @@ mod tests {
     use super::symmetric_eigen;
 
     #[test]
-    fn jacobi_diagonalises() {
+    fn eigenpairs_of_a_symmetric_matrix() {
         let mut a = [[0.0; 6]; 6];
         let m = [[4.0, 1.0, 0.5], [1.0, 3.0, 0.2], [0.5, 0.2, 1.0]];
         for r in 0..3 {

@@ -495,54 +495,53 @@ fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Ow
 }
 
 /// Inverse of the leading d × d block (zeros elsewhere); `None` if it is singular
-/// relative to its size (reciprocal condition below 1e-10).
+/// relative to its size (determinant below 1e-10 of the largest diagonal entry
+/// to the power d).
 fn invert(k: &Mat3, d: usize) -> Option<Mat3> {
     let scale = (0..d).map(|a| k[a][a]).fold(0.0, f64::max);
     if scale <= 0.0 {
         return None;
     }
     let mut inv = [[0.0; 3]; 3];
-    match d {
-        2 => {
-            let det = k[0][0] * k[1][1] - k[0][1] * k[1][0];
-            if det <= 1e-10 * scale * scale {
-                return None;
-            }
-            inv[0][0] = k[1][1] / det;
-            inv[1][1] = k[0][0] / det;
-            inv[0][1] = -k[0][1] / det;
-            inv[1][0] = -k[1][0] / det;
+    if d == 2 {
+        let m = nalgebra::Matrix2::new(k[0][0], k[0][1], k[1][0], k[1][1]);
+        if m.determinant() <= 1e-10 * scale * scale {
+            return None;
         }
-        _ => {
-            let c = |r: usize, s: usize| {
-                let (r1, r2) = ((r + 1) % 3, (r + 2) % 3);
-                let (s1, s2) = ((s + 1) % 3, (s + 2) % 3);
-                k[r1][s1] * k[r2][s2] - k[r1][s2] * k[r2][s1]
-            };
-            let det = k[0][0] * c(0, 0) + k[0][1] * c(0, 1) + k[0][2] * c(0, 2);
-            if det <= 1e-10 * scale * scale * scale {
-                return None;
-            }
-            for r in 0..3 {
-                for s in 0..3 {
-                    inv[r][s] = c(s, r) / det;
-                }
+        let m = m.try_inverse()?;
+        for r in 0..2 {
+            for c in 0..2 {
+                inv[r][c] = m[(r, c)];
             }
         }
+    } else {
+        let m = to_matrix(k);
+        if m.determinant() <= 1e-10 * scale * scale * scale {
+            return None;
+        }
+        inv = from_matrix(&m.try_inverse()?);
     }
     Some(inv)
 }
 
+fn to_matrix(m: &Mat3) -> nalgebra::Matrix3<f64> {
+    nalgebra::Matrix3::from_fn(|r, c| m[r][c])
+}
+
+fn from_matrix(m: &nalgebra::Matrix3<f64>) -> Mat3 {
+    std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+}
+
 fn identity() -> Mat3 {
-    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    from_matrix(&nalgebra::Matrix3::identity())
 }
 
 fn mat_vec(m: &Mat3, v: &[f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+    (to_matrix(m) * nalgebra::Vector3::from(*v)).into()
 }
 
 fn mat_mul(a: &Mat3, b: &Mat3) -> Mat3 {
-    std::array::from_fn(|r| std::array::from_fn(|c| (0..3).map(|k| a[r][k] * b[k][c]).sum()))
+    from_matrix(&(to_matrix(a) * to_matrix(b)))
 }
 
 /// The rotation of the polar decomposition `F = R P` by SVD, made proper.
