@@ -10,7 +10,7 @@ mod common;
 
 use common::scene;
 use dhpd::discretization;
-use dhpd::drivers::dynamics::kernels::{FamilyKernel, ForceField, PairKernel};
+use dhpd::drivers::dynamics::kernels::{FamilyKernel, ForceField, PairKernel, Simd};
 use dhpd::drivers::dynamics::{self, DynamicsSolution, Observer, Outcome, Snapshot};
 use dhpd::drivers::static_solve;
 use dhpd::error::Error;
@@ -290,6 +290,18 @@ fn the_pair_kernel_is_the_bond_based_kernel() {
         "{:e}",
         common::max_abs(&fp, 3)
     );
+    // Every vector path this CPU offers gives bitwise the same forces (the
+    // same IEEE operations in the same order, no fused multiply-add).
+    let mut reference = None;
+    for simd in Simd::available() {
+        assert!(pair.set_simd(simd));
+        let mut f = vec![[0.0; 3]; n];
+        pair.forces(&u, &mut f);
+        match &reference {
+            None => reference = Some(f),
+            Some(r) => assert!(f == *r, "{simd:?} differs from the baseline path"),
+        }
+    }
 }
 
 /// A bar pulled at both ends breaks: bonds break by the quasi-static driver's

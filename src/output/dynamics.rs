@@ -236,7 +236,7 @@ pub fn write(
             scene.model, scene.dimension, scene.horizons
         ),
         method: format!("{:?}", dy.method),
-        kernel: solution.kernel,
+        kernel: &solution.kernel,
         outcome: &solution.outcome,
         points: solution.disc.points.len(),
         bonds: solution.bonds,

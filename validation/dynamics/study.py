@@ -349,6 +349,25 @@ def throughput(repeats=5):
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
+    # One core, each vector path of the force loop (DHPD_SIMD narrows the choice;
+    # a path the CPU lacks falls back to the widest it has, named in `kernel`).
+    paths = []
+    for simd in ("baseline", "avx2", "avx512"):
+        samples = []
+        for _ in range(repeats):
+            env = dict(os.environ, RAYON_NUM_THREADS="1", DHPD_SIMD=simd)
+            out = os.path.join(WORK, f"tp_{simd}")
+            subprocess.run([DHPD, "run", path, "--out", out], check=True, env=env,
+                           stdout=subprocess.DEVNULL)
+            s = summary(out)
+            samples.append((s["bond_updates_per_second"], s["kernel"]))
+        paths.append(dict(requested=simd, kernel=samples[0][1], runs=repeats,
+                          median_bond_updates_per_second=statistics.median(x[0] for x in samples)))
+        print(paths[-1])
+    with open(os.path.join(RESULTS, "throughput_paths.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(paths[0]))
+        w.writeheader()
+        w.writerows(paths)
 
 
 # ---------------------------------------------------------------- 2D wave plate, refined corner

@@ -66,6 +66,11 @@ pub trait ForceField: Send {
     fn damage(&self) -> Vec<f64> {
         damage::damage(self.disc())
     }
+
+    /// The vector path of the force loop, where it has a choice.
+    fn simd(&self) -> Option<Simd> {
+        None
+    }
 }
 
 /// The screen's margin: a pair is examined exactly when `num ≥ limit × den × SCREEN`.
@@ -116,6 +121,8 @@ pub struct PairKernel {
     /// Dual horizons: the blocks of rows. Traditional: one flag per row.
     blocks: Vec<Block>,
     flagged: Vec<bool>,
+    /// Vector path of the dual-horizon force loop.
+    simd: Simd,
 }
 
 /// `(s, y, |y|)` of a pair from `x_i, x_j, u_i, u_j`; bitwise the same both ways.
@@ -159,6 +166,186 @@ fn pair_force(
     (c, y, over)
 }
 
+/// Pairs per batch of the dual-horizon force loop: gathered, then their square
+/// roots and divisions computed together (in as many lanes as the CPU offers),
+/// then scattered.
+const BATCH: usize = 32;
+
+/// The vector instructions of the bond-based force loop, chosen at run time:
+/// the widest the CPU offers, or a narrower one named by the environment
+/// variable `DHPD_SIMD` (`baseline`, `avx2`, `avx512`; for benchmarks). Every
+/// path computes the same IEEE operations in the same order (no fused
+/// multiply-add), so the forces are bitwise the same on every path.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Simd {
+    /// Two lanes (SSE2 on every x86-64; the target's default elsewhere).
+    Baseline,
+    /// Four lanes (AVX2).
+    Avx2,
+    /// Eight lanes (AVX-512F).
+    Avx512,
+}
+
+impl Simd {
+    /// The paths this CPU can run, narrowest first.
+    pub fn available() -> Vec<Simd> {
+        let mut paths = vec![Simd::Baseline];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if std::is_x86_feature_detected!("avx2") {
+                paths.push(Simd::Avx2);
+            }
+            if std::is_x86_feature_detected!("avx512f") {
+                paths.push(Simd::Avx512);
+            }
+        }
+        paths
+    }
+
+    /// The widest available path, or the one `DHPD_SIMD` names if available.
+    pub fn detect() -> Self {
+        let paths = Self::available();
+        let requested = std::env::var("DHPD_SIMD").ok().and_then(|name| {
+            paths
+                .iter()
+                .copied()
+                .find(|p| format!("{p:?}").eq_ignore_ascii_case(&name))
+        });
+        requested.unwrap_or(*paths.last().expect("the baseline is always available"))
+    }
+
+    /// [`block_forces`] compiled for these lanes.
+    #[allow(clippy::too_many_arguments)]
+    fn block_forces(
+        self,
+        rows: std::ops::Range<usize>,
+        start: &[usize],
+        pairs: &[Pair],
+        x: &[[f64; 3]],
+        u: &[[f64; 3]],
+        force: &mut [[f64; 3]],
+        flagged: &mut Vec<u32>,
+    ) {
+        match self {
+            // SAFETY: a kernel holds only a path from `available`, which the
+            // CPU reported it supports.
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx2 => unsafe { block_forces_avx2(rows, start, pairs, x, u, force, flagged) },
+            #[cfg(target_arch = "x86_64")]
+            Simd::Avx512 => unsafe {
+                block_forces_avx512(rows, start, pairs, x, u, force, flagged)
+            },
+            _ => block_forces(rows, start, pairs, x, u, force, flagged),
+        }
+    }
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn block_forces_avx2(
+    rows: std::ops::Range<usize>,
+    start: &[usize],
+    pairs: &[Pair],
+    x: &[[f64; 3]],
+    u: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    flagged: &mut Vec<u32>,
+) {
+    block_forces(rows, start, pairs, x, u, force, flagged)
+}
+
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx512f")]
+#[allow(clippy::too_many_arguments)]
+unsafe fn block_forces_avx512(
+    rows: std::ops::Range<usize>,
+    start: &[usize],
+    pairs: &[Pair],
+    x: &[[f64; 3]],
+    u: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    flagged: &mut Vec<u32>,
+) {
+    block_forces(rows, start, pairs, x, u, force, flagged)
+}
+
+/// The forces of the pairs of `rows` into `force` (both ends of each pair),
+/// the rows whose pairs passed the breakage screen into `flagged`. Each row's
+/// pairs go in batches: gather `y = ξ + η` and the stretch numerator, compute the
+/// force coefficients of the whole batch (the square roots and divisions, in
+/// vector lanes), scatter. Same operations as [`pair_force`], same results.
+#[inline(always)]
+fn block_forces(
+    rows: std::ops::Range<usize>,
+    start: &[usize],
+    pairs: &[Pair],
+    x: &[[f64; 3]],
+    u: &[[f64; 3]],
+    force: &mut [[f64; 3]],
+    flagged: &mut Vec<u32>,
+) {
+    let mut y = [[0.0f64; BATCH]; 3];
+    let (mut num, mut length, mut weight, mut limit, mut coef) = (
+        [0.0f64; BATCH],
+        [0.0f64; BATCH],
+        [0.0f64; BATCH],
+        [0.0f64; BATCH],
+        [0.0f64; BATCH],
+    );
+    let mut over = [false; BATCH];
+    for i in rows {
+        let (xi, ui) = (x[i], u[i]);
+        let mut acc = [0.0; 3];
+        let mut any = false;
+        for batch in pairs[start[i]..start[i + 1]].chunks(BATCH) {
+            let n = batch.len();
+            for (k, p) in batch.iter().enumerate() {
+                let j = p.neighbour as usize;
+                let d = [x[j][0] - xi[0], x[j][1] - xi[1], x[j][2] - xi[2]];
+                let e = [u[j][0] - ui[0], u[j][1] - ui[1], u[j][2] - ui[2]];
+                y[0][k] = d[0] + e[0];
+                y[1][k] = d[1] + e[1];
+                y[2][k] = d[2] + e[2];
+                num[k] = 2.0 * (d[0] * e[0] + d[1] * e[1] + d[2] * e[2])
+                    + (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+                length[k] = p.length;
+                weight[k] = p.weight;
+                limit[k] = f64::from(p.limit);
+            }
+            for k in 0..n.min(BATCH) {
+                let yl = (y[0][k] * y[0][k] + y[1][k] * y[1][k] + y[2][k] * y[2][k]).sqrt();
+                let den = (yl + length[k]) * length[k];
+                over[k] = num[k] >= limit[k] * den * SCREEN;
+                coef[k] = if yl > 0.0 {
+                    weight[k] * num[k] / (den * yl)
+                } else {
+                    0.0
+                };
+            }
+            for (k, p) in batch.iter().enumerate() {
+                any |= over[k];
+                let f = [coef[k] * y[0][k], coef[k] * y[1][k], coef[k] * y[2][k]];
+                acc[0] += f[0];
+                acc[1] += f[1];
+                acc[2] += f[2];
+                let fj = &mut force[p.neighbour as usize];
+                fj[0] -= f[0];
+                fj[1] -= f[1];
+                fj[2] -= f[2];
+            }
+        }
+        let fi = &mut force[i];
+        fi[0] += acc[0];
+        fi[1] += acc[1];
+        fi[2] += acc[2];
+        if any {
+            flagged.push(i as u32);
+        }
+    }
+}
+
 fn round_down(v: f64) -> f32 {
     let r = v as f32;
     if (r as f64) > v {
@@ -169,6 +356,16 @@ fn round_down(v: f64) -> f32 {
 }
 
 impl PairKernel {
+    /// Runs the force loop on `simd` (for comparisons); false, and no change,
+    /// when this CPU does not offer it.
+    pub fn set_simd(&mut self, simd: Simd) -> bool {
+        let ok = Simd::available().contains(&simd);
+        if ok {
+            self.simd = simd;
+        }
+        ok
+    }
+
     /// Gathers the bonds of `disc` into pairs; `criterion` breaks bonds when
     /// given. Dual horizons: one entry per pair of points sharing a bond in
     /// either direction, in the row of the smaller index; traditional: one
@@ -262,6 +459,7 @@ impl PairKernel {
             traditional,
             blocks,
             flagged: vec![false; if traditional { n } else { 0 }],
+            simd: Simd::detect(),
         };
         for i in 0..n {
             for e in kernel.start[i]..kernel.start[i + 1] {
@@ -331,34 +529,13 @@ impl PairKernel {
     fn forces_dual(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Vec<usize> {
         let x = &self.disc.points.x;
         let (start, pairs) = (&self.start, &self.pairs);
+        let simd = self.simd;
         self.blocks.par_iter_mut().for_each(|block| {
             block.force.fill([0.0; 3]);
             block.flagged.clear();
-            for i in block.rows.clone() {
-                let (xi, ui) = (&x[i], &u[i]);
-                let mut acc = [0.0; 3];
-                let mut over = false;
-                for p in &pairs[start[i]..start[i + 1]] {
-                    let j = p.neighbour as usize;
-                    let (c, y, flag) = pair_force(p, xi, &x[j], ui, &u[j]);
-                    over |= flag;
-                    let f = [c * y[0], c * y[1], c * y[2]];
-                    acc[0] += f[0];
-                    acc[1] += f[1];
-                    acc[2] += f[2];
-                    let fj = &mut block.force[j];
-                    fj[0] -= f[0];
-                    fj[1] -= f[1];
-                    fj[2] -= f[2];
-                }
-                let fi = &mut block.force[i];
-                fi[0] += acc[0];
-                fi[1] += acc[1];
-                fi[2] += acc[2];
-                if over {
-                    block.flagged.push(i as u32);
-                }
-            }
+            let rows = block.rows.clone();
+            let (force, flagged) = (&mut block.force, &mut block.flagged);
+            simd.block_forces(rows, start, pairs, x, u, force, flagged);
         });
         let blocks = &self.blocks;
         out.par_iter_mut()
@@ -452,6 +629,10 @@ impl ForceField for PairKernel {
 
     fn into_disc(self: Box<Self>) -> Discretization {
         self.disc
+    }
+
+    fn simd(&self) -> Option<Simd> {
+        (!self.traditional).then_some(self.simd)
     }
 }
 

@@ -162,8 +162,8 @@ pub struct DynamicsSolution {
     pub bond_updates_per_second: f64,
     /// Largest |balance error| over the records.
     pub max_balance_error: f64,
-    /// Which force field ran.
-    pub kernel: &'static str,
+    /// Which force field ran (and its vector path).
+    pub kernel: String,
     /// Log lines.
     pub log: Vec<String>,
 }
@@ -238,6 +238,13 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
             }
         }
     })
+}
+
+fn kernel_description(scene: &Scene, field: &dyn ForceField) -> String {
+    match field.simd() {
+        Some(simd) => format!("{}, {simd:?} vector path", kernel_name(scene)),
+        None => kernel_name(scene).to_string(),
+    }
 }
 
 fn kernel_name(scene: &Scene) -> &'static str {
@@ -748,6 +755,7 @@ impl Verlet<'_> {
         }
         let integration = start.elapsed().as_secs_f64() - output_seconds;
         let damage = self.kernel.damage();
+        let description = kernel_description(self.scene, self.kernel.as_ref());
         let kernel = self.kernel;
         Ok(DynamicsSolution {
             disc: kernel.into_disc(),
@@ -771,7 +779,7 @@ impl Verlet<'_> {
             bonds: 0,
             bond_updates_per_second: 0.0,
             max_balance_error: max_balance,
-            kernel: kernel_name(self.scene),
+            kernel: description,
             log: Vec::new(),
         })
     }
@@ -958,6 +966,7 @@ impl Relaxation<'_> {
         }
         let integration = start.elapsed().as_secs_f64() - output_seconds;
         let damage = self.kernel.damage();
+        let description = kernel_description(self.scene, self.kernel.as_ref());
         let kernel = self.kernel;
         let mut log = Vec::new();
         if let Outcome::NotConverged { residual } = outcome {
@@ -989,7 +998,7 @@ impl Relaxation<'_> {
             bonds: 0,
             bond_updates_per_second: 0.0,
             max_balance_error: 0.0,
-            kernel: kernel_name(self.scene),
+            kernel: description,
             log,
         })
     }
