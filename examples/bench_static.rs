@@ -6,6 +6,8 @@
 //! cargo run --release --example bench_static -- 3d 37 1                  # 37^3 = 50,653 points
 //! cargo run --release --example bench_static -- 2d 201 3 shear           # shear model, 40,401 points (GMRES)
 //! cargo run --release --example bench_static -- 2d 201 1 shear lu        # the same with sparse LU
+//! cargo run --release --example bench_static -- 2d 400 3 bond_based amd  # the ordering: amd,
+//!                                                  # nested_dissection or auto (default)
 //! RAYON_NUM_THREADS=1 cargo run --release --example bench_static -- ...  # one thread
 //! ```
 //!
@@ -17,7 +19,7 @@
 use dhpd::drivers::static_solve;
 use dhpd::scene::{parse_spec, Scene};
 
-fn scene(dim: &str, n: usize, model: &str, method: &str) -> Scene {
+fn scene(dim: &str, n: usize, model: &str, method: &str, ordering: &str) -> Scene {
     let h = 1.0 / n as f64;
     let (dimension, nu, lo, hi, fix, hi_left, value) = if dim == "3d" {
         (
@@ -45,7 +47,12 @@ fn scene(dim: &str, n: usize, model: &str, method: &str) -> Scene {
          [[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = {lo}, max = {hi} }}\n\
          [[boundary]]\nname = \"left\"\nbox = {{ min = {lo}, max = {hi_left} }}\ndisplacement = {{ {fix} }}\n\
          [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = {value}\n{}",
-        if method.is_empty() { String::new() } else { format!("[solver]\nmethod = \"{method}\"\n") }
+        match (method.is_empty(), ordering.is_empty()) {
+            (true, true) => String::new(),
+            (false, true) => format!("[solver]\nmethod = \"{method}\"\n"),
+            (true, false) => format!("[solver]\nordering = \"{ordering}\"\n"),
+            (false, false) => format!("[solver]\nmethod = \"{method}\"\nordering = \"{ordering}\"\n"),
+        }
     );
     Scene::try_from_spec(
         parse_spec(&text, false).unwrap(),
@@ -76,9 +83,16 @@ fn main() {
     let dim = args.get(1).map_or("2d", String::as_str).to_string();
     let n: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(200);
     let repeats: usize = args.get(3).and_then(|s| s.parse().ok()).unwrap_or(3);
-    let model = args.get(4).map_or("bond_based", String::as_str).to_string();
-    let method = args.get(5).map_or("", String::as_str).to_string();
-    let scene = scene(&dim, n, &model, &method);
+    let rest = args.get(4..).unwrap_or_default();
+    let pick = |choices: &[&str], default: &str| {
+        rest.iter()
+            .find(|a| choices.contains(&a.as_str()))
+            .map_or(default.to_string(), |a| a.clone())
+    };
+    let model = pick(&["bond_based", "shear"], "bond_based");
+    let method = pick(&["cholesky", "lu", "gmres"], "");
+    let ordering = pick(&["amd", "nested_dissection", "auto"], "");
+    let scene = scene(&dim, n, &model, &method, &ordering);
     let names = [
         "points",
         "neighbours",
@@ -115,13 +129,19 @@ fn main() {
         }
         let c = &s.counts;
         info = format!(
-            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, gmres iterations {}, residual {:.1e}",
+            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, gmres iterations {}, residual {:.1e}, ordering {}",
             c.points, c.bonds, c.dofs, c.nnz_k, c.nnz_l.map_or("-".into(), |v| v.to_string()), c.asymmetry,
-            c.gmres.map_or("-".into(), |g| g.iterations.to_string()), s.residual
+            c.gmres.map_or("-".into(), |g| g.iterations.to_string()), s.residual,
+            c.ordering.map_or("-".into(), |o| format!(
+                "{:?} (nnz(L) AMD {:?}, ND {:?}; flops AMD {:.3e}, ND {:.3e}; dissection {:.3} s)",
+                o.chosen, o.nnz_l_amd, o.nnz_l_nested_dissection,
+                o.flops_amd.unwrap_or(f64::NAN), o.flops_nested_dissection.unwrap_or(f64::NAN),
+                o.dissection_seconds
+            ))
         );
     }
     println!(
-        "{dim} n={n} {model} {method} ({repeats} repeats, {} rayon threads): {info}",
+        "{dim} n={n} {model} {method} {ordering} ({repeats} repeats, {} rayon threads): {info}",
         rayon::current_num_threads()
     );
     for (name, t) in names.iter().zip(times) {

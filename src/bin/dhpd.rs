@@ -250,6 +250,15 @@ fn print_report(scene: &Scene, s: &static_solve::StaticSolution, dir: &Path) {
         c.nnz_k,
         c.nnz_l.map_or("-".into(), |v| v.to_string())
     );
+    if let Some(o) = &c.ordering {
+        let size = |v: Option<usize>| v.map_or("-".into(), |v| v.to_string());
+        println!(
+            "ordering {:?} (nnz(L) with AMD {}, with nested dissection {})",
+            o.chosen,
+            size(o.nnz_l_amd),
+            size(o.nnz_l_nested_dissection)
+        );
+    }
     println!(
         "time [s]: points {:.3}, neighbours {:.3}, pattern {:.3}, assembly {:.3}, symbolic {:.3}, numeric {:.3}, solve {:.3}",
         t.discretization, t.neighbour_search, t.pattern, t.assembly, t.symbolic_factorization, t.numeric_factorization, t.solve

@@ -53,6 +53,8 @@ pub struct Counts {
     pub nnz_k: usize,
     /// Stored entries of the Cholesky factor (None for LU).
     pub nnz_l: Option<usize>,
+    /// The factor's fill-reducing ordering and the sizes of those analysed.
+    pub ordering: Option<crate::solve::pipeline::OrderingReport>,
     /// Pivot range of the Cholesky factor (None for LU).
     pub pivots: Option<PivotStats>,
     /// `‖K − Kᵀ‖_F / ‖K‖_F` (round-off for the bond-based model).
@@ -295,6 +297,7 @@ pub fn solve_with<M: Model>(
         prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
         nnz_k: pipeline.pattern().nnz(),
         nnz_l: pipeline.nnz_factor(),
+        ordering: pipeline.ordering,
         pivots: pipeline.pivot_stats(),
         asymmetry,
         refinement_steps: report.refinement_steps,

@@ -527,6 +527,10 @@ pub struct SolverSpec {
     /// factorised afresh (default: chosen from the measured cost of a
     /// factorisation and of one iteration).
     pub refactor_iterations: Option<usize>,
+    /// Fill-reducing ordering of the Cholesky factor: `"auto"` (default: AMD and
+    /// nested dissection both analysed, the smaller factor kept), `"amd"` or
+    /// `"nested_dissection"`.
+    pub ordering: Option<crate::solve::ordering::Ordering>,
 }
 
 /// `[output]`

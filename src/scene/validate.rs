@@ -285,6 +285,8 @@ pub struct Scene {
     pub solver: SolverMethod,
     /// User limit on the size of a sparse factor in bytes (`solver.memory_limit_gib`).
     pub memory_limit_bytes: Option<f64>,
+    /// Fill-reducing ordering of the Cholesky factor (`solver.ordering`).
+    pub ordering: crate::solve::ordering::Ordering,
     /// Iterations of a re-solve with the previous factor before refactorising
     /// (`solver.refactor_iterations`; None: chosen from measured costs).
     pub refactor_iterations: Option<usize>,
@@ -694,6 +696,7 @@ impl Scene {
                 ModelKind::BondBased => SolverMethod::Cholesky,
                 ModelKind::Shear => SolverMethod::Gmres,
             }),
+            ordering: spec.solver.ordering.unwrap_or_default(),
             memory_limit_bytes: match spec.solver.memory_limit_gib {
                 Some(gib) => {
                     positive("solver.memory_limit_gib", gib)?;

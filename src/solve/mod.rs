@@ -9,6 +9,7 @@
 pub mod cg;
 pub mod gmres;
 pub mod low_rank;
+pub mod ordering;
 pub mod pipeline;
 
 use crate::error::{MemoryLimit, NumericalError};
@@ -63,15 +64,27 @@ pub struct Cholesky {
 }
 
 impl Cholesky {
-    /// Symbolic analysis (ordering, elimination tree, supernodes) of the pattern.
-    pub fn analyse(structure: SymbolicSparseColMatRef<'_, usize>) -> Result<Self, NumericalError> {
-        let symbolic = factorize_symbolic_cholesky(
-            structure,
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            Default::default(),
-        )
-        .map_err(|e| NumericalError::Solver(format!("{e:?}")))?;
+    /// Symbolic analysis (ordering, elimination tree, supernodes) of the
+    /// pattern, with AMD or the given elimination order (`order[k]`: the
+    /// unknown eliminated `k`-th).
+    pub fn analyse(
+        structure: SymbolicSparseColMatRef<'_, usize>,
+        order: Option<&[usize]>,
+    ) -> Result<Self, NumericalError> {
+        let inverse = order.map(|fwd| {
+            let mut inv = vec![0usize; fwd.len()];
+            fwd.iter().enumerate().for_each(|(k, &i)| inv[i] = k);
+            inv
+        });
+        let ordering = match (order, &inverse) {
+            (Some(fwd), Some(inv)) => {
+                SymmetricOrdering::Custom(faer::perm::PermRef::new_checked(fwd, inv, fwd.len()))
+            }
+            _ => SymmetricOrdering::Amd,
+        };
+        let symbolic =
+            factorize_symbolic_cholesky(structure, Side::Lower, ordering, Default::default())
+                .map_err(|e| NumericalError::Solver(format!("{e:?}")))?;
         Ok(Self {
             symbolic,
             factor: Vec::new(),
@@ -83,6 +96,36 @@ impl Cholesky {
     /// Number of stored entries of `L`.
     pub fn nnz_l(&self) -> usize {
         self.symbolic.len_val()
+    }
+
+    /// Floating-point operations of the numeric factorisation, `Σ_j c_j²` over
+    /// the column counts `c_j` of `L` (multiply-adds of the column updates;
+    /// relaxed supernodes count their explicit zeros).
+    pub fn flops(&self) -> f64 {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Simplicial(sym) => sym
+                .col_ptr()
+                .windows(2)
+                .map(|w| ((w[1] - w[0]) as f64).powi(2))
+                .sum(),
+            SymbolicCholeskyRaw::Supernodal(sym) => {
+                let (begin, end, rows) = (
+                    sym.supernode_begin(),
+                    sym.supernode_end(),
+                    sym.col_ptr_for_row_idx(),
+                );
+                (0..sym.n_supernodes())
+                    .map(|s| {
+                        let width = (end[s] - begin[s]) as f64;
+                        let below = (rows[s + 1] - rows[s]) as f64;
+                        // Σ_{k=1..w} (k + below)²
+                        width * below * below
+                            + below * width * (width + 1.0)
+                            + width * (width + 1.0) * (2.0 * width + 1.0) / 6.0
+                    })
+                    .sum()
+            }
+        }
     }
 
     /// Bytes the numeric factorisation will allocate: the factor's values plus faer's workspace.
@@ -508,7 +551,7 @@ mod tests {
         let n = 400;
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
         let matrix = SparseColMatRef::new(sym, &values);
-        let mut chol = Cholesky::analyse(sym).unwrap();
+        let mut chol = Cholesky::analyse(sym, None).unwrap();
         chol.factorize(matrix).unwrap();
         let stats = chol.pivot_stats.unwrap();
         assert!(
@@ -584,7 +627,7 @@ mod tests {
             })
             .collect();
         let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-        let mut chol = Cholesky::analyse(sym).unwrap();
+        let mut chol = Cholesky::analyse(sym, None).unwrap();
         chol.factorize(SparseColMatRef::new(sym, &perturbed))
             .unwrap();
         let apply = move |x: &[f64]| {

@@ -30,6 +30,7 @@
 use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
 use super::low_rank::{LowRank, Term};
+use super::ordering::{nested_dissection, Ordering};
 use super::{
     check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
     GMRES_TOLERANCE,
@@ -79,6 +80,8 @@ pub struct SolverSettings {
     pub memory_limit_bytes: Option<f64>,
     /// Re-solve iterations before refactorising (None: from measured costs).
     pub refactor_iterations: Option<usize>,
+    /// Fill-reducing ordering of the Cholesky factor.
+    pub ordering: Ordering,
 }
 
 impl SolverSettings {
@@ -88,8 +91,81 @@ impl SolverSettings {
             method: scene.solver,
             memory_limit_bytes: scene.memory_limit_bytes,
             refactor_iterations: scene.refactor_iterations,
+            ordering: scene.ordering,
         }
     }
+}
+
+/// Which fill-reducing ordering the Cholesky factor uses, and the factor sizes
+/// of the orderings analysed.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct OrderingReport {
+    /// The ordering kept.
+    pub chosen: Ordering,
+    /// nnz(L) with AMD, when analysed.
+    pub nnz_l_amd: Option<usize>,
+    /// nnz(L) with the nested dissection, when analysed.
+    pub nnz_l_nested_dissection: Option<usize>,
+    /// Factorisation flops (`Σ c_j²`) with AMD, when analysed.
+    pub flops_amd: Option<f64>,
+    /// Factorisation flops with the nested dissection, when analysed.
+    pub flops_nested_dissection: Option<f64>,
+    /// Time of the nested dissection itself (s).
+    pub dissection_seconds: f64,
+}
+
+/// Symbolic Cholesky analysis of `pattern` with the ordering asked for
+/// (`auto`: AMD and nested dissection both analysed, the one whose numeric
+/// factorisation needs fewer operations kept).
+fn analyse_cholesky(
+    pattern: &Pattern,
+    disc: &Discretization,
+    dofs: &DofMap,
+    ordering: Ordering,
+) -> Result<(Cholesky, OrderingReport), Error> {
+    let mut report = OrderingReport {
+        chosen: ordering,
+        nnz_l_amd: None,
+        nnz_l_nested_dissection: None,
+        flops_amd: None,
+        flops_nested_dissection: None,
+        dissection_seconds: 0.0,
+    };
+    let amd = match ordering {
+        Ordering::Amd | Ordering::Auto => {
+            let chol = Cholesky::analyse(pattern.symbolic(), None)?;
+            report.nnz_l_amd = Some(chol.nnz_l());
+            report.flops_amd = Some(chol.flops());
+            Some(chol)
+        }
+        Ordering::NestedDissection => None,
+    };
+    let nd = match ordering {
+        Ordering::NestedDissection | Ordering::Auto => {
+            let t = Instant::now();
+            let order = nested_dissection(&disc.points.x, dofs, pattern);
+            report.dissection_seconds = t.elapsed().as_secs_f64();
+            let chol = Cholesky::analyse(pattern.symbolic(), Some(&order))?;
+            report.nnz_l_nested_dissection = Some(chol.nnz_l());
+            report.flops_nested_dissection = Some(chol.flops());
+            Some(chol)
+        }
+        Ordering::Amd => None,
+    };
+    let chol = match (amd, nd) {
+        // The factor that costs less to compute (and, nearly always, to store).
+        (Some(a), Some(n)) if n.flops() < a.flops() => {
+            report.chosen = Ordering::NestedDissection;
+            n
+        }
+        (Some(a), _) => {
+            report.chosen = Ordering::Amd;
+            a
+        }
+        (None, Some(n)) => n,
+        (None, None) => unreachable!("every ordering analyses at least one"),
+    };
+    Ok((chol, report))
 }
 
 /// How a solve was done.
@@ -208,6 +284,8 @@ pub struct Pipeline {
     pub symbolic_seconds: f64,
     /// Sparsity pattern time (s).
     pub pattern_seconds: f64,
+    /// The Cholesky factor's ordering (None for LU).
+    pub ordering: Option<OrderingReport>,
 }
 
 impl Pipeline {
@@ -233,6 +311,7 @@ impl Pipeline {
         };
         let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
+        let mut ordering = None;
         let (source, factor) = match settings.method {
             SolverMethod::Lu => (
                 Source::Matrix,
@@ -240,11 +319,12 @@ impl Pipeline {
             ),
             SolverMethod::Cholesky | SolverMethod::Gmres => {
                 let (source, structure) = match (&surrogate, settings.method) {
-                    (Some((star, _)), _) => (Source::Surrogate, star.symbolic()),
-                    (None, SolverMethod::Gmres) => (Source::SymmetricPart, pattern.symbolic()),
-                    _ => (Source::Matrix, pattern.symbolic()),
+                    (Some((star, _)), _) => (Source::Surrogate, star),
+                    (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
+                    _ => (Source::Matrix, &pattern),
                 };
-                let chol = Cholesky::analyse(structure)?;
+                let (chol, report) = analyse_cholesky(structure, disc, dofs, settings.ordering)?;
+                ordering = Some(report);
                 check_memory(
                     || "the sparse factor".into(),
                     chol.factor_bytes() as f64,
@@ -269,6 +349,7 @@ impl Pipeline {
             refactor_next: false,
             symbolic_seconds: t.elapsed().as_secs_f64(),
             pattern_seconds,
+            ordering,
         })
     }
 
@@ -371,7 +452,9 @@ impl Pipeline {
         k: &Stiffness,
     ) -> Result<(), Error> {
         if self.source == Source::Surrogate {
-            let mut chol = Cholesky::analyse(self.pattern.symbolic())?;
+            let (mut chol, report) =
+                analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering)?;
+            self.ordering = Some(report);
             check_memory(
                 || "the sparse factor".into(),
                 chol.factor_bytes() as f64,
