@@ -8,6 +8,7 @@
 //! cargo run --release --example bench_static -- 2d 201 1 shear lu        # the same with sparse LU
 //! cargo run --release --example bench_static -- 2d 400 3 bond_based amd  # the ordering: amd,
 //!                                                  # nested_dissection or auto (default)
+//! cargo run --release --example bench_static -- 2d 400 3 mixed           # single-precision factor
 //! RAYON_NUM_THREADS=1 cargo run --release --example bench_static -- ...  # one thread
 //! ```
 //!
@@ -19,7 +20,7 @@
 use dhpd::drivers::static_solve;
 use dhpd::scene::{parse_spec, Scene};
 
-fn scene(dim: &str, n: usize, model: &str, method: &str, ordering: &str) -> Scene {
+fn scene(dim: &str, n: usize, model: &str, method: &str, ordering: &str, precision: &str) -> Scene {
     let h = 1.0 / n as f64;
     let (dimension, nu, lo, hi, fix, hi_left, value) = if dim == "3d" {
         (
@@ -47,11 +48,14 @@ fn scene(dim: &str, n: usize, model: &str, method: &str, ordering: &str) -> Scen
          [[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = {lo}, max = {hi} }}\n\
          [[boundary]]\nname = \"left\"\nbox = {{ min = {lo}, max = {hi_left} }}\ndisplacement = {{ {fix} }}\n\
          [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = {value}\n{}",
-        match (method.is_empty(), ordering.is_empty()) {
-            (true, true) => String::new(),
-            (false, true) => format!("[solver]\nmethod = \"{method}\"\n"),
-            (true, false) => format!("[solver]\nordering = \"{ordering}\"\n"),
-            (false, false) => format!("[solver]\nmethod = \"{method}\"\nordering = \"{ordering}\"\n"),
+        {
+            let mut solver = String::new();
+            for (key, value) in [("method", method), ("ordering", ordering), ("precision", precision)] {
+                if !value.is_empty() {
+                    solver += &format!("{key} = \"{value}\"\n");
+                }
+            }
+            if solver.is_empty() { solver } else { format!("[solver]\n{solver}") }
         }
     );
     Scene::try_from_spec(
@@ -92,7 +96,8 @@ fn main() {
     let model = pick(&["bond_based", "shear"], "bond_based");
     let method = pick(&["cholesky", "lu", "gmres"], "");
     let ordering = pick(&["amd", "nested_dissection", "auto"], "");
-    let scene = scene(&dim, n, &model, &method, &ordering);
+    let precision = pick(&["double", "mixed"], "");
+    let scene = scene(&dim, n, &model, &method, &ordering, &precision);
     let names = [
         "points",
         "neighbours",
@@ -129,7 +134,7 @@ fn main() {
         }
         let c = &s.counts;
         info = format!(
-            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, gmres iterations {}, residual {:.1e}, ordering {}",
+            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, krylov iterations {}, residual {:.1e}, ordering {}",
             c.points, c.bonds, c.dofs, c.nnz_k, c.nnz_l.map_or("-".into(), |v| v.to_string()), c.asymmetry,
             c.gmres.map_or("-".into(), |g| g.iterations.to_string()), s.residual,
             c.ordering.map_or("-".into(), |o| format!(
@@ -141,7 +146,7 @@ fn main() {
         );
     }
     println!(
-        "{dim} n={n} {model} {method} {ordering} ({repeats} repeats, {} rayon threads): {info}",
+        "{dim} n={n} {model} {method} {ordering} {precision} ({repeats} repeats, {} rayon threads): {info}",
         rayon::current_num_threads()
     );
     for (name, t) in names.iter().zip(times) {

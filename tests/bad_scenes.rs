@@ -271,12 +271,16 @@ const CASES: &[Case] = &[
     c("every_dof_prescribed", &[Rep("min = [0.0, 0.0], max = [0.01, 0.1]", "min = [0.0, 0.0], max = [0.2, 0.1]")], None, 3, &["every degree of freedom is prescribed"]),
     c("isolated_point_default_policy", &[Add(PF)], Some("1.0 1.0 1e-6\n"), 3, &["discretization.isolated_points", "point"]),
     c("point_held_by_a_single_bond", &[Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["non-positive pivot at point 200", "component 1"]),
+    // The mixed-precision route falls back to double precision and reports the same point.
+    c("point_held_by_a_single_bond_mixed_precision", &[Add("\n[solver]\nprecision = \"mixed\"\n"), Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["single-precision factorisation failed", "factorising in double precision", "non-positive pivot at point 200", "component 1"]),
     // Every large structure is checked before it is allocated: the bonds (an
     // estimate, then the running count), the stiffness pattern, the factor.
     c("bonds_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 1e-4\n")], None, 3, &["the bonds (an estimated", "would need", "solver.memory_limit_gib"]),
     c("bonds_counted_above_memory_limit", &[Whole(COARSE_OVER_FINE)], None, 3, &["the bonds (more than", "solver.memory_limit_gib"]),
     c("pattern_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 3e-4\n")], None, 3, &["the stiffness pattern", "solver.memory_limit_gib"]),
     c("factor_above_memory_limit", &[Whole(CUBE_3D)], None, 3, &["the sparse factor would need", "solver.memory_limit_gib"]),
+    c("mixed_precision_in_a_fracture_run", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[solver]\nprecision = \"mixed\"\n")], None, 2, &["solver.precision", "double precision"]),
+    c("ordering_unknown", &[Add("\n[solver]\nordering = \"metis\"\n")], None, 2, &["solver.ordering", "metis"]),
     c("memory_limit_not_positive", &[Add("\n[solver]\nmemory_limit_gib = -1.0\n")], None, 2, &["solver.memory_limit_gib"]),
     c("memory_limit_nan_string", &[Add("\n[solver]\nmemory_limit_gib = \"lots\"\n")], None, 2, &["solver.memory_limit_gib"]),
     // --- `dhpd check` (validation only) rejects what it can see ---

@@ -531,6 +531,10 @@ pub struct SolverSpec {
     /// nested dissection both analysed, the smaller factor kept), `"amd"` or
     /// `"nested_dissection"`.
     pub ordering: Option<crate::solve::ordering::Ordering>,
+    /// Precision of the Cholesky factor: `"auto"` (default: double, single when
+    /// only that fits in memory), `"double"` or `"mixed"` (single-precision
+    /// factor, full accuracy recovered by CG or GMRES preconditioned by it).
+    pub precision: Option<crate::solve::pipeline::Precision>,
 }
 
 /// `[output]`

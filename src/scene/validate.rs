@@ -287,6 +287,8 @@ pub struct Scene {
     pub memory_limit_bytes: Option<f64>,
     /// Fill-reducing ordering of the Cholesky factor (`solver.ordering`).
     pub ordering: crate::solve::ordering::Ordering,
+    /// Precision of the Cholesky factor (`solver.precision`).
+    pub precision: crate::solve::pipeline::Precision,
     /// Iterations of a re-solve with the previous factor before refactorising
     /// (`solver.refactor_iterations`; None: chosen from measured costs).
     pub refactor_iterations: Option<usize>,
@@ -661,6 +663,15 @@ impl Scene {
                 ));
             }
         }
+        if spec.solver.precision == Some(crate::solve::pipeline::Precision::Mixed)
+            && (quasi_static.is_some() || dynamics.is_some())
+        {
+            return Err(InputError::new(
+                "solver.precision",
+                "\"mixed\" applies to static solves (fracture runs update the factor exactly, \
+                 which needs double precision; explicit runs factorise nothing)",
+            ));
+        }
         if spec.solver.refactor_iterations == Some(0) {
             return Err(InputError::new(
                 "solver.refactor_iterations",
@@ -697,6 +708,7 @@ impl Scene {
                 ModelKind::Shear => SolverMethod::Gmres,
             }),
             ordering: spec.solver.ordering.unwrap_or_default(),
+            precision: spec.solver.precision.unwrap_or_default(),
             memory_limit_bytes: match spec.solver.memory_limit_gib {
                 Some(gib) => {
                     positive("solver.memory_limit_gib", gib)?;

@@ -55,10 +55,16 @@ pub enum FactorError {
     Generic,
 }
 
-/// Sparse Cholesky `K = L Lᵀ` with a fill-reducing (AMD) ordering.
+/// Sparse Cholesky `K = L Lᵀ` with a fill-reducing ordering, its values in
+/// double precision or, for mixed precision, in single precision (half the
+/// memory; the solves convert, and the caller recovers double-precision
+/// accuracy with CG preconditioned by this factor).
 pub struct Cholesky {
     symbolic: SymbolicCholesky<usize>,
     factor: Vec<f64>,
+    /// Single precision: the factor of `K / scale`, `scale` the largest |K_ij|
+    /// (so that no entry overflows or underflows single precision).
+    single: Option<(Vec<f32>, f64)>,
     factored: bool,
     pivot_stats: Option<PivotStats>,
 }
@@ -88,9 +94,28 @@ impl Cholesky {
         Ok(Self {
             symbolic,
             factor: Vec::new(),
+            single: None,
             factored: false,
             pivot_stats: None,
         })
+    }
+
+    /// Stores the factor in single precision from the next factorisation on.
+    pub fn use_single_precision(&mut self) {
+        self.factor = Vec::new();
+        self.single = Some((Vec::new(), 1.0));
+        self.factored = false;
+    }
+
+    /// Stores the factor in double precision from the next factorisation on.
+    pub fn use_double_precision(&mut self) {
+        self.single = None;
+        self.factored = false;
+    }
+
+    /// Whether the factor is stored in single precision.
+    pub fn is_single(&self) -> bool {
+        self.single.is_some()
     }
 
     /// Number of stored entries of `L`.
@@ -128,14 +153,23 @@ impl Cholesky {
         }
     }
 
-    /// Bytes the numeric factorisation will allocate: the factor's values plus faer's workspace.
-    pub fn factor_bytes(&self) -> usize {
+    /// Bytes the numeric factorisation will allocate: the factor's values plus
+    /// faer's workspace (and, in single precision, a single-precision copy of
+    /// the matrix's values, `nnz_k` of them).
+    pub fn factor_bytes(&self, nnz_k: usize) -> usize {
         let par = faer::get_global_parallelism();
-        self.symbolic.len_val() * std::mem::size_of::<f64>()
-            + self
-                .symbolic
-                .factorize_numeric_llt_scratch::<f64>(par, Default::default())
-                .size_bytes()
+        let sym = &self.symbolic;
+        if self.is_single() {
+            (sym.len_val() + nnz_k) * std::mem::size_of::<f32>()
+                + sym
+                    .factorize_numeric_llt_scratch::<f32>(par, Default::default())
+                    .size_bytes()
+        } else {
+            sym.len_val() * std::mem::size_of::<f64>()
+                + sym
+                    .factorize_numeric_llt_scratch::<f64>(par, Default::default())
+                    .size_bytes()
+        }
     }
 
     /// Numeric factorisation for new values on the analysed pattern (reuses the factor's memory).
@@ -145,21 +179,49 @@ impl Cholesky {
     ) -> Result<(), FactorError> {
         self.factored = false;
         let par = faer::get_global_parallelism();
-        self.factor.resize(self.symbolic.len_val(), 0.0);
-        let mut mem = MemBuffer::try_new(
+        let result = if let Some((single, scale)) = &mut self.single {
+            single.resize(self.symbolic.len_val(), 0.0);
+            *scale = matrix.val().iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !(*scale > 0.0 && scale.is_finite()) {
+                return Err(FactorError::Generic);
+            }
+            let values: Vec<f32> = matrix.val().iter().map(|&v| (v / *scale) as f32).collect();
+            let matrix32 = SparseColMatRef::new(matrix.symbolic(), &values);
+            let mut mem = MemBuffer::try_new(
+                self.symbolic
+                    .factorize_numeric_llt_scratch::<f32>(par, Default::default()),
+            )
+            .map_err(|_| FactorError::Generic)?;
             self.symbolic
-                .factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-        )
-        .map_err(|_| FactorError::Generic)?;
-        let result = self.symbolic.factorize_numeric_llt(
-            &mut self.factor,
-            matrix,
-            Side::Lower,
-            LltRegularization::default(),
-            par,
-            MemStack::new(&mut mem),
-            Default::default(),
-        );
+                .factorize_numeric_llt(
+                    single,
+                    matrix32,
+                    Side::Lower,
+                    LltRegularization::default(),
+                    par,
+                    MemStack::new(&mut mem),
+                    Default::default(),
+                )
+                .map(|_| ())
+        } else {
+            self.factor.resize(self.symbolic.len_val(), 0.0);
+            let mut mem = MemBuffer::try_new(
+                self.symbolic
+                    .factorize_numeric_llt_scratch::<f64>(par, Default::default()),
+            )
+            .map_err(|_| FactorError::Generic)?;
+            self.symbolic
+                .factorize_numeric_llt(
+                    &mut self.factor,
+                    matrix,
+                    Side::Lower,
+                    LltRegularization::default(),
+                    par,
+                    MemStack::new(&mut mem),
+                    Default::default(),
+                )
+                .map(|_| ())
+        };
         match result {
             Ok(_) => {
                 self.factored = true;
@@ -199,16 +261,29 @@ impl Cholesky {
                     let k = (col_ptr[j]..col_ptr[j + 1])
                         .find(|&k| row_idx[k] == j)
                         .expect("factor stores its diagonal");
-                    *d = self.factor[k];
+                    *d = match &self.single {
+                        Some((single, scale)) => f64::from(single[k]) * scale.sqrt(),
+                        None => self.factor[k],
+                    };
                 }
             }
             SymbolicCholeskyRaw::Supernodal(sym) => {
-                let l = SupernodalLltRef::new(sym, &self.factor);
                 for s in 0..sym.n_supernodes() {
-                    let node = l.supernode(s);
-                    let val = node.val();
-                    for k in 0..val.ncols() {
-                        diag_l[node.start() + k] = val[(k, k)];
+                    match &self.single {
+                        Some((single, scale)) => {
+                            let node = SupernodalLltRef::new(sym, single).supernode(s);
+                            let val = node.val();
+                            for k in 0..val.ncols() {
+                                diag_l[node.start() + k] = f64::from(val[(k, k)]) * scale.sqrt();
+                            }
+                        }
+                        None => {
+                            let node = SupernodalLltRef::new(sym, &self.factor).supernode(s);
+                            let val = node.val();
+                            for k in 0..val.ncols() {
+                                diag_l[node.start() + k] = val[(k, k)];
+                            }
+                        }
                     }
                 }
             }
@@ -247,33 +322,50 @@ impl Cholesky {
 
     /// Solves `K x = b` in place with the current factor.
     pub fn solve_in_place(&self, b: &mut [f64]) {
-        assert!(self.factored, "solve before a successful factorisation");
-        let par = faer::get_global_parallelism();
-        let n = b.len();
-        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(1, par));
-        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(b, n, 1),
-            par,
-            MemStack::new(&mut mem),
-        );
+        self.solve_columns_in_place(b, 1);
     }
 }
 
 impl Cholesky {
     /// Solves `K X = B` in place for the `columns` columns of `B`, stored one
-    /// after the other in `b` (one blocked pass through the factor).
+    /// after the other in `b` (one blocked pass through the factor). A
+    /// single-precision factor solves a copy of `B` scaled to its largest
+    /// entry (so that single precision neither overflows nor underflows).
     pub fn solve_columns_in_place(&self, b: &mut [f64], columns: usize) {
         assert!(self.factored, "solve before a successful factorisation");
         let par = faer::get_global_parallelism();
         let n = b.len() / columns.max(1);
-        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(columns, par));
-        LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
-            Conj::No,
-            MatMut::from_column_major_slice_mut(b, n, columns),
-            par,
-            MemStack::new(&mut mem),
-        );
+        match &self.single {
+            Some((single, matrix_scale)) => {
+                // (K / s)⁻¹ (b / t) = K⁻¹ b / (s t): solve the scaled copy, scale back.
+                let scale = b.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                if scale == 0.0 || !scale.is_finite() {
+                    return;
+                }
+                let mut b32: Vec<f32> = b.iter().map(|&v| (v / scale) as f32).collect();
+                let mut mem =
+                    MemBuffer::new(self.symbolic.solve_in_place_scratch::<f32>(columns, par));
+                LltRef::new(&self.symbolic, single).solve_in_place_with_conj(
+                    Conj::No,
+                    MatMut::from_column_major_slice_mut(&mut b32, n, columns),
+                    par,
+                    MemStack::new(&mut mem),
+                );
+                b.iter_mut()
+                    .zip(&b32)
+                    .for_each(|(v, w)| *v = f64::from(*w) * scale / matrix_scale);
+            }
+            None => {
+                let mut mem =
+                    MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(columns, par));
+                LltRef::new(&self.symbolic, &self.factor).solve_in_place_with_conj(
+                    Conj::No,
+                    MatMut::from_column_major_slice_mut(b, n, columns),
+                    par,
+                    MemStack::new(&mut mem),
+                );
+            }
+        }
     }
 }
 
@@ -531,6 +623,7 @@ mod tests {
                 let mut chol = Cholesky {
                     symbolic,
                     factor: Vec::new(),
+                    single: None,
                     factored: false,
                     pivot_stats: None,
                 };

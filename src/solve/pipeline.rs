@@ -82,6 +82,8 @@ pub struct SolverSettings {
     pub refactor_iterations: Option<usize>,
     /// Fill-reducing ordering of the Cholesky factor.
     pub ordering: Ordering,
+    /// Precision of the Cholesky factor.
+    pub precision: Precision,
 }
 
 impl SolverSettings {
@@ -92,8 +94,88 @@ impl SolverSettings {
             memory_limit_bytes: scene.memory_limit_bytes,
             refactor_iterations: scene.refactor_iterations,
             ordering: scene.ordering,
+            // Fracture re-solves update the factor exactly (low-rank terms),
+            // which needs it in double precision.
+            precision: if scene.quasi_static.is_some() {
+                Precision::Double
+            } else {
+                scene.precision
+            },
         }
     }
+}
+
+/// The precision of the Cholesky factor (`solver.precision`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    /// Single precision for large factors (from [`MIXED_FROM_NNZ_L`] entries,
+    /// where it halves the factorisation time) or when only that fits in
+    /// memory; double otherwise.
+    #[default]
+    Auto,
+    /// Double precision.
+    Double,
+    /// Single-precision factor; double-precision accuracy recovered by CG
+    /// (Cholesky route) or GMRES (shear model) preconditioned by it.
+    Mixed,
+}
+
+/// Factor size from which `auto` factorises in single precision: measured on
+/// the 2D square (bond-based, δ = 3.015Δx, one thread), single precision halves
+/// the numeric factorisation (9.3 → 4.7 s at 160,000 points, nnz(L) 2.0e8) but
+/// its CG iterations cost about what it saves at 40,000 points (nnz(L) 4.0e7).
+pub const MIXED_FROM_NNZ_L: usize = 100_000_000;
+
+/// Largest relative residual a mixed-precision solve is accepted with, when
+/// CG stops at the round-off floor above [`GMRES_TOLERANCE`]; above it the
+/// solve falls back to a double-precision factor.
+const MIXED_ACCEPT: f64 = 1e-10;
+
+/// CG iterations a mixed-precision solve may take before it falls back to a
+/// double-precision factor (it needs about 3-6 when `κ(K) ε₃₂ ≪ 1`).
+const MIXED_ITERATIONS: usize = 60;
+
+/// Stores `chol` in the precision `settings` ask for, and refuses a factor
+/// that does not fit in memory (`auto`: single precision when only that fits).
+fn choose_precision(
+    chol: &mut Cholesky,
+    nnz_k: usize,
+    settings: &SolverSettings,
+) -> Result<(), Error> {
+    let limit = settings.memory_limit_bytes;
+    let check = |chol: &Cholesky| {
+        let what = if chol.is_single() {
+            "the sparse factor in single precision"
+        } else {
+            "the sparse factor"
+        };
+        check_memory(|| what.into(), chol.factor_bytes(nnz_k) as f64, limit)
+    };
+    match settings.precision {
+        Precision::Double => check(chol)?,
+        Precision::Mixed => {
+            chol.use_single_precision();
+            check(chol)?;
+        }
+        Precision::Auto if chol.nnz_l() >= MIXED_FROM_NNZ_L => {
+            chol.use_single_precision();
+            check(chol)?;
+        }
+        Precision::Auto => {
+            if let Err(double) = check(chol) {
+                chol.use_single_precision();
+                if check(chol).is_err() {
+                    return Err(double.into());
+                }
+                eprintln!(
+                    "note: {double}; factorising in single precision instead \
+                     (solver.precision = \"mixed\"), refined to full accuracy"
+                );
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Which fill-reducing ordering the Cholesky factor uses, and the factor sizes
@@ -114,9 +196,17 @@ pub struct OrderingReport {
     pub dissection_seconds: f64,
 }
 
+/// Size of `K` (stored entries) up to which `auto` analyses both orderings.
+/// Above it AMD's own analysis becomes costly (15 s at a million 2D points,
+/// a quarter of the factorisation) while nested dissection needs half its flops
+/// on every bulky body measured, so `auto` analyses nested dissection alone
+/// (`solver.ordering = "amd"` still forces AMD, e.g. for long thin bodies).
+pub const AUTO_AMD_UP_TO_NNZ_K: usize = 50_000_000;
+
 /// Symbolic Cholesky analysis of `pattern` with the ordering asked for
 /// (`auto`: AMD and nested dissection both analysed, the one whose numeric
-/// factorisation needs fewer operations kept).
+/// factorisation needs fewer operations kept; nested dissection alone above
+/// [`AUTO_AMD_UP_TO_NNZ_K`]).
 fn analyse_cholesky(
     pattern: &Pattern,
     disc: &Discretization,
@@ -131,7 +221,9 @@ fn analyse_cholesky(
         flops_nested_dissection: None,
         dissection_seconds: 0.0,
     };
+    let large = pattern.nnz() > AUTO_AMD_UP_TO_NNZ_K;
     let amd = match ordering {
+        Ordering::Auto if large => None,
         Ordering::Amd | Ordering::Auto => {
             let chol = Cholesky::analyse(pattern.symbolic(), None)?;
             report.nnz_l_amd = Some(chol.nnz_l());
@@ -245,6 +337,10 @@ impl Factor {
             Factor::Lu(l) => l.solve_in_place(b),
         }
     }
+
+    fn is_single(&self) -> bool {
+        matches!(self, Factor::Cholesky(c) if c.is_single())
+    }
 }
 
 /// Measured costs that decide when a re-solve should refactorise.
@@ -323,13 +419,10 @@ impl Pipeline {
                     (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
                     _ => (Source::Matrix, &pattern),
                 };
-                let (chol, report) = analyse_cholesky(structure, disc, dofs, settings.ordering)?;
+                let (mut chol, report) =
+                    analyse_cholesky(structure, disc, dofs, settings.ordering)?;
                 ordering = Some(report);
-                check_memory(
-                    || "the sparse factor".into(),
-                    chol.factor_bytes() as f64,
-                    settings.memory_limit_bytes,
-                )?;
+                choose_precision(&mut chol, structure.nnz(), &settings)?;
                 (source, Factor::Cholesky(chol))
             }
         };
@@ -443,6 +536,18 @@ impl Pipeline {
         Ok(())
     }
 
+    /// Stores the Cholesky factor in double precision from now on (after a
+    /// single-precision factor failed), checking that it fits in memory.
+    fn use_double_precision(&mut self) -> Result<(), Error> {
+        self.settings.precision = Precision::Double;
+        let nnz_k = self.pattern.nnz();
+        if let Factor::Cholesky(chol) = &mut self.factor {
+            chol.use_double_precision();
+            choose_precision(chol, nnz_k, &self.settings)?;
+        }
+        Ok(())
+    }
+
     /// Switches the `gmres` route from its current factor to the next one:
     /// surrogate → symmetric part → LU of `K`.
     fn fall_back(
@@ -455,11 +560,7 @@ impl Pipeline {
             let (mut chol, report) =
                 analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering)?;
             self.ordering = Some(report);
-            check_memory(
-                || "the sparse factor".into(),
-                chol.factor_bytes() as f64,
-                self.settings.memory_limit_bytes,
-            )?;
+            choose_precision(&mut chol, self.pattern.nnz(), &self.settings)?;
             let full = k.symmetric_part(self.transpose());
             match chol.factorize(full.view(&self.pattern)) {
                 Ok(()) => {
@@ -499,13 +600,59 @@ impl Pipeline {
             self.transpose();
         }
         let t = Instant::now();
-        self.factorize(disc, dofs, k)?;
+        if let Err(e) = self.factorize(disc, dofs, k) {
+            if !self.factor.is_single() {
+                return Err(e);
+            }
+            // A pivot lost to single-precision round-off: the matrix is too
+            // ill-conditioned for a single-precision factor.
+            eprintln!("note: the single-precision factorisation failed ({e}); factorising in double precision");
+            self.use_double_precision()?;
+            self.factorize(disc, dofs, k)?;
+        }
         let factor_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let mut x = vec![0.0; rhs.len()];
         let mut report = None;
         let (residual, refinement_steps);
-        if self.source == Source::Matrix {
+        if self.source == Source::Matrix && self.factor.is_single() {
+            // Mixed precision: CG on K preconditioned by the single-precision
+            // factor, to the residual the direct routes reach.
+            let apply = |v: &[f64]| self.product(k, v);
+            let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+            let cg = pcg(
+                &apply,
+                &precondition,
+                rhs,
+                &mut x,
+                GMRES_TOLERANCE,
+                MIXED_ITERATIONS,
+            );
+            // Large systems stop at the round-off floor of their products
+            // (2e-12 at a million points), which the direct route would accept
+            // after refinement too; anything higher means the single-precision
+            // factor is not good enough.
+            if !(cg.relative_residual <= MIXED_ACCEPT) {
+                eprintln!(
+                    "note: CG with the single-precision factor reached {:.1e} after {} \
+                     iterations (the matrix is too ill-conditioned for single precision); \
+                     factorising in double precision",
+                    cg.relative_residual, cg.iterations
+                );
+                self.use_double_precision()?;
+                self.factorize(disc, dofs, k)?;
+                x.copy_from_slice(rhs);
+                self.factor.solve_in_place(&mut x);
+                let apply = |v: &[f64]| self.product(k, v);
+                let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
+                (residual, refinement_steps) = refine(&apply, &solve, rhs, &mut x);
+            } else {
+                residual = cg.relative_residual;
+                refinement_steps = 0;
+                report = Some(cg);
+            }
+            self.costs.fresh_iterations = 0;
+        } else if self.source == Source::Matrix {
             x.copy_from_slice(rhs);
             self.factor.solve_in_place(&mut x);
             let apply = |v: &[f64]| self.product(k, v);
