@@ -254,7 +254,10 @@ fn analyse_cholesky(
             report.chosen = Ordering::Amd;
             a
         }
-        (None, Some(n)) => n,
+        (None, Some(n)) => {
+            report.chosen = Ordering::NestedDissection;
+            n
+        }
         (None, None) => unreachable!("every ordering analyses at least one"),
     };
     Ok((chol, report))
