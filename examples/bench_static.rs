@@ -9,6 +9,7 @@
 //! cargo run --release --example bench_static -- 2d 400 3 bond_based amd  # the ordering: amd,
 //!                                                  # nested_dissection or auto (default)
 //! cargo run --release --example bench_static -- 2d 400 3 mixed           # single-precision factor
+//! cargo run --release --example bench_static -- 3d 58 1 iterative        # CG, short-range preconditioner
 //! RAYON_NUM_THREADS=1 cargo run --release --example bench_static -- ...  # one thread
 //! ```
 //!
@@ -94,7 +95,7 @@ fn main() {
             .map_or(default.to_string(), |a| a.clone())
     };
     let model = pick(&["bond_based", "shear"], "bond_based");
-    let method = pick(&["cholesky", "lu", "gmres"], "");
+    let method = pick(&["cholesky", "lu", "gmres", "iterative"], "");
     let ordering = pick(&["amd", "nested_dissection", "auto"], "");
     let precision = pick(&["double", "mixed"], "");
     let scene = scene(&dim, n, &model, &method, &ordering, &precision);

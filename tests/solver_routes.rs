@@ -184,3 +184,28 @@ fn mixed_precision_gives_the_double_answer() {
         );
     }
 }
+
+#[test]
+fn the_iterative_route_gives_the_direct_answer() {
+    for (name, text) in cases() {
+        let direct = solve(&text, "precision = \"double\"");
+        let iterative = solve(&text, "method = \"iterative\"");
+        let (diff, scale) = max_difference(&direct, &iterative);
+        let bound = if name == "thin strip" { 1e-9 } else { 1e-10 };
+        println!(
+            "{name}: residual {:.1e}, {} Krylov iterations, |Δu|/max|u| {:.1e}",
+            iterative.residual,
+            iterative.counts.gmres.map_or(0, |g| g.iterations),
+            diff / scale
+        );
+        assert!(
+            iterative.residual <= 1e-10,
+            "{name}: residual {:e}",
+            iterative.residual
+        );
+        assert!(
+            diff <= bound * scale,
+            "{name}: |u_iterative − u_direct| = {diff:e} of {scale:e}"
+        );
+    }
+}

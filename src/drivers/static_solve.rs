@@ -250,6 +250,7 @@ pub fn solve_with<M: Model>(
             &scene.materials,
             scene.thickness,
         )),
+        Some(scene),
     )?;
     timings.pattern = pipeline.pattern_seconds;
     timings.symbolic_factorization = pipeline.symbolic_seconds;

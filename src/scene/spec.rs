@@ -508,15 +508,22 @@ pub enum SolverMethod {
     Lu,
     /// GMRES on `K`, preconditioned by the Cholesky factor of `(K + Kᵀ)/2`.
     Gmres,
+    /// CG on `K` (GMRES for a non-symmetric `K`) preconditioned by the
+    /// Cholesky factor of a short-range bond-based stiffness: no factor of `K`
+    /// is stored ([`crate::solve::short_range`]).
+    Iterative,
 }
 
 /// `[solver]`
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
-    /// `"cholesky"`, `"lu"` or `"gmres"`; default: Cholesky for the bond-based
-    /// model, GMRES preconditioned by the Cholesky factor of the symmetric part for
-    /// the shear model (its tangent is 0.4-0.7 % asymmetric; 9 iterations to 1e-12).
+    /// `"cholesky"`, `"lu"`, `"gmres"` or `"iterative"`; default: Cholesky for
+    /// the bond-based model, GMRES preconditioned by the Cholesky factor of the
+    /// bond-based stiffness for the shear model (its tangent is 0.2-0.7 %
+    /// asymmetric). Either default switches to `"iterative"` (Krylov on `K`
+    /// preconditioned by the factor of a short-range stiffness) when no factor
+    /// fits in memory.
     pub method: Option<SolverMethod>,
     /// Largest sparse factor to attempt, in GiB (default and upper bound: 90 % of
     /// the memory available when the factorisation starts). A larger factor is

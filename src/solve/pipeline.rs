@@ -10,6 +10,7 @@
 //! | `cholesky` | `K = L Lᵀ`, triangular solves, refinement | CG preconditioned by the old `L Lᵀ` |
 //! | `lu` | `K = L U`, triangular solves, refinement | GMRES preconditioned by the old `L U` |
 //! | `gmres` | GMRES on `K` preconditioned by the Cholesky factor of a symmetric surrogate | GMRES with the old surrogate factor |
+//! | `iterative` | CG on `K` (GMRES if not symmetric) preconditioned by the factor of a short-range stiffness ([`super::short_range`]) | the same with the old factor |
 //!
 //! The surrogate of the `gmres` route is the bond-based stiffness on the bonded
 //! pairs (shear model: its pattern is the bond graph, far sparser than `K`'s
@@ -17,6 +18,12 @@
 //! surrogate stalls (near incompressibility it has no Poisson ratio), the route
 //! switches to the Cholesky factor of `(K + Kᵀ)/2`, and to LU when that is not
 //! positive definite; the switch is kept for later solves and said on stderr.
+//! A factor used only as a preconditioner is stored in single precision
+//! unless `solver.precision = "double"` (the Krylov iterations recover full
+//! accuracy either way).
+//!
+//! When the factor of the `cholesky` or `gmres` route does not fit in memory
+//! in either precision, the route becomes `iterative`, with a note.
 //!
 //! **Re-solves.** The pattern never changes when bonds break (broken bonds keep
 //! their slots), so the symbolic analysis is done once. If `k` bonds broke
@@ -31,6 +38,7 @@ use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
 use super::low_rank::{LowRank, Term};
 use super::ordering::{nested_dissection, Ordering};
+use super::short_range::ShortRange;
 use super::{
     check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
     GMRES_TOLERANCE,
@@ -55,6 +63,10 @@ const SURROGATE_BUDGET: usize = 120;
 
 /// GMRES iterations allowed with the factor of the symmetric part.
 const SYMMETRIC_PART_BUDGET: usize = 600;
+
+/// Krylov iterations allowed with the short-range preconditioner
+/// (it needs 30-150 on the bodies measured, independent of their size).
+pub const ITERATIVE_BUDGET: usize = 2000;
 
 /// GMRES restart length.
 const GMRES_RESTART: usize = 60;
@@ -137,11 +149,13 @@ const MIXED_ACCEPT: f64 = 1e-10;
 const MIXED_ITERATIONS: usize = 60;
 
 /// Stores `chol` in the precision `settings` ask for, and refuses a factor
-/// that does not fit in memory (`auto`: single precision when only that fits).
+/// that does not fit in memory (`auto`: single precision when only that fits,
+/// and always for a `preconditioner`, whose errors the iterations remove).
 fn choose_precision(
     chol: &mut Cholesky,
     nnz_k: usize,
     settings: &SolverSettings,
+    preconditioner: bool,
 ) -> Result<(), Error> {
     let limit = settings.memory_limit_bytes;
     let check = |chol: &Cholesky| {
@@ -158,7 +172,7 @@ fn choose_precision(
             chol.use_single_precision();
             check(chol)?;
         }
-        Precision::Auto if chol.nnz_l() >= MIXED_FROM_NNZ_L => {
+        Precision::Auto if preconditioner || chol.nnz_l() >= MIXED_FROM_NNZ_L => {
             chol.use_single_precision();
             check(chol)?;
         }
@@ -263,6 +277,34 @@ fn analyse_cholesky(
     Ok((chol, report))
 }
 
+/// The short-range preconditioner of the `iterative` route: its points and
+/// bonds, pattern and analysed factor (in single precision unless
+/// `solver.precision = "double"`).
+fn short_range(
+    disc: &Discretization,
+    dofs: &DofMap,
+    scene: &Scene,
+    settings: &SolverSettings,
+    ordering: &mut Option<OrderingReport>,
+) -> Result<(Surrogate, Factor), Error> {
+    let short = ShortRange::new(disc, scene)?;
+    let pattern = Pattern::new(
+        &short.disc,
+        dofs,
+        Coupling::Star,
+        settings.memory_limit_bytes,
+    )?;
+    let (mut chol, report) = analyse_cholesky(&pattern, &short.disc, dofs, settings.ordering)?;
+    *ordering = Some(report);
+    choose_precision(&mut chol, pattern.nnz(), settings, true)?;
+    let surrogate = Surrogate {
+        disc: Some(short.disc),
+        pattern,
+        model: short.model,
+    };
+    Ok((surrogate, Factor::Cholesky(chol)))
+}
+
 /// How a solve was done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -326,6 +368,17 @@ enum Source {
     SymmetricPart,
     /// The bond-based stiffness on the bond pattern (GMRES on the shear model).
     Surrogate,
+    /// The bond-based stiffness of short horizons (the `iterative` route).
+    ShortRange,
+}
+
+/// A symmetric positive definite matrix the pipeline assembles itself and
+/// factorises as a preconditioner.
+struct Surrogate {
+    /// Its own points and bonds (short range), or None: those of `K`.
+    disc: Option<crate::discretization::Discretization>,
+    pattern: Pattern,
+    model: BondBased,
 }
 
 enum Factor {
@@ -365,7 +418,7 @@ pub struct Pipeline {
     pattern: Pattern,
     /// Transposed positions of `K`'s entries (non-symmetric `K`, symmetric part).
     transpose: Option<Vec<usize>>,
-    surrogate: Option<(Pattern, BondBased)>,
+    surrogate: Option<Surrogate>,
     source: Source,
     factor: Factor,
     factored: bool,
@@ -391,42 +444,75 @@ impl Pipeline {
     /// Builds the pattern of `K` for `coupling` and runs the symbolic analysis of
     /// the route, before any value is assembled, so that a factor too large for
     /// memory is refused early. `surrogate` is the bond-based model the `gmres`
-    /// route factorises for a `Family` coupling.
+    /// route factorises for a `Family` coupling; `scene` is what the short-range
+    /// preconditioner is built from (None: the `iterative` route is not
+    /// available, and a factor that does not fit is refused).
     pub fn analyse(
         disc: &Discretization,
         dofs: &DofMap,
         coupling: Coupling,
         settings: SolverSettings,
         surrogate: Option<BondBased>,
+        scene: Option<&Scene>,
     ) -> Result<Self, Error> {
         let t = Instant::now();
         let limit = settings.memory_limit_bytes;
         let pattern = Pattern::new(disc, dofs, coupling, limit)?;
-        let surrogate = match (settings.method, coupling, surrogate) {
-            (SolverMethod::Gmres, Coupling::Family, Some(model)) => {
-                Some((Pattern::new(disc, dofs, Coupling::Star, limit)?, model))
-            }
+        let mut surrogate = match (settings.method, coupling, surrogate) {
+            (SolverMethod::Gmres, Coupling::Family, Some(model)) => Some(Surrogate {
+                disc: None,
+                pattern: Pattern::new(disc, dofs, Coupling::Star, limit)?,
+                model,
+            }),
             _ => None,
         };
-        let pattern_seconds = t.elapsed().as_secs_f64();
+        let mut pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let mut ordering = None;
+        let mut direct = |surrogate: &Option<Surrogate>| -> Result<_, Error> {
+            let (source, structure) = match (surrogate, settings.method) {
+                (Some(s), _) => (Source::Surrogate, &s.pattern),
+                (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
+                _ => (Source::Matrix, &pattern),
+            };
+            let (mut chol, report) = analyse_cholesky(structure, disc, dofs, settings.ordering)?;
+            ordering = Some(report);
+            choose_precision(
+                &mut chol,
+                structure.nnz(),
+                &settings,
+                source != Source::Matrix,
+            )?;
+            Ok((source, Factor::Cholesky(chol)))
+        };
         let (source, factor) = match settings.method {
             SolverMethod::Lu => (
                 Source::Matrix,
                 Factor::Lu(SparseLu::analyse(pattern.symbolic())?),
             ),
-            SolverMethod::Cholesky | SolverMethod::Gmres => {
-                let (source, structure) = match (&surrogate, settings.method) {
-                    (Some((star, _)), _) => (Source::Surrogate, star),
-                    (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
-                    _ => (Source::Matrix, &pattern),
-                };
-                let (mut chol, report) =
-                    analyse_cholesky(structure, disc, dofs, settings.ordering)?;
-                ordering = Some(report);
-                choose_precision(&mut chol, structure.nnz(), &settings)?;
-                (source, Factor::Cholesky(chol))
+            SolverMethod::Cholesky | SolverMethod::Gmres => match (direct(&surrogate), scene) {
+                (Ok(route), _) => route,
+                (Err(Error::Numerical(e @ NumericalError::TooLarge { .. })), Some(scene)) => {
+                    eprintln!(
+                        "note: {e}; solving iteratively instead (solver.method = \"iterative\": \
+                         Krylov iterations preconditioned by the factor of a short-range stiffness)"
+                    );
+                    drop(surrogate.take()); // free its pattern before the next
+                    let (short, chol) = short_range(disc, dofs, scene, &settings, &mut ordering)?;
+                    surrogate = Some(short);
+                    (Source::ShortRange, chol)
+                }
+                (Err(e), _) => return Err(e),
+            },
+            SolverMethod::Iterative => {
+                let scene = scene.ok_or_else(|| {
+                    NumericalError::Solver("the iterative route needs the scene".into())
+                })?;
+                let t = Instant::now();
+                let (short, chol) = short_range(disc, dofs, scene, &settings, &mut ordering)?;
+                pattern_seconds += t.elapsed().as_secs_f64();
+                surrogate = Some(short);
+                (Source::ShortRange, chol)
             }
         };
         Ok(Self {
@@ -520,14 +606,15 @@ impl Pipeline {
                 symmetric_values = k.symmetric_part(self.transpose());
                 symmetric_values.view(&self.pattern)
             }
-            Source::Surrogate => {
-                let (star, model) = self.surrogate.as_ref().expect("surrogate route");
-                let mut values = Stiffness::assemble(model, disc, dofs, star);
+            Source::Surrogate | Source::ShortRange => {
+                let s = self.surrogate.as_ref().expect("surrogate route");
+                let points = s.disc.as_ref().unwrap_or(disc);
+                let mut values = Stiffness::assemble(&s.model, points, dofs, &s.pattern);
                 if let Some((pinned, diagonal)) = &self.pinned {
-                    values.pin(star, pinned, *diagonal, None);
+                    values.pin(&s.pattern, pinned, *diagonal, None);
                 }
                 surrogate_values = values;
-                surrogate_values.view(star)
+                surrogate_values.view(&s.pattern)
             }
         };
         let result = match &mut self.factor {
@@ -543,10 +630,13 @@ impl Pipeline {
     /// single-precision factor failed), checking that it fits in memory.
     fn use_double_precision(&mut self) -> Result<(), Error> {
         self.settings.precision = Precision::Double;
-        let nnz_k = self.pattern.nnz();
+        let nnz_k = match (&self.surrogate, self.source) {
+            (Some(s), Source::Surrogate | Source::ShortRange) => s.pattern.nnz(),
+            _ => self.pattern.nnz(),
+        };
         if let Factor::Cholesky(chol) = &mut self.factor {
             chol.use_double_precision();
-            choose_precision(chol, nnz_k, &self.settings)?;
+            choose_precision(chol, nnz_k, &self.settings, false)?;
         }
         Ok(())
     }
@@ -563,7 +653,7 @@ impl Pipeline {
             let (mut chol, report) =
                 analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering)?;
             self.ordering = Some(report);
-            choose_precision(&mut chol, self.pattern.nnz(), &self.settings)?;
+            choose_precision(&mut chol, self.pattern.nnz(), &self.settings, false)?;
             let full = k.symmetric_part(self.transpose());
             match chol.factorize(full.view(&self.pattern)) {
                 Ok(()) => {
@@ -662,6 +752,21 @@ impl Pipeline {
             let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
             (residual, refinement_steps) = refine(&apply, &solve, rhs, &mut x);
             self.costs.fresh_iterations = 0;
+        } else if self.source == Source::ShortRange && self.symmetric {
+            let apply = |v: &[f64]| self.product(k, v);
+            let precondition = |v: &mut [f64]| self.precondition(v);
+            let cg = pcg(
+                &apply,
+                &precondition,
+                rhs,
+                &mut x,
+                GMRES_TOLERANCE,
+                ITERATIVE_BUDGET,
+            );
+            self.costs.fresh_iterations = cg.iterations;
+            residual = cg.relative_residual;
+            refinement_steps = 0;
+            report = Some(cg);
         } else {
             let mut first = self.gmres(k, rhs, &mut x, self.budget());
             if !first.converged && self.source == Source::Surrogate {
@@ -701,6 +806,19 @@ impl Pipeline {
             report = Some(first);
         }
         let solve_seconds = t.elapsed().as_secs_f64();
+        if let (Source::ShortRange, Some(r)) = (self.source, &report) {
+            // Large systems stop at the round-off floor of their products.
+            if !(r.relative_residual <= MIXED_ACCEPT) {
+                eprintln!(
+                    "note: the iterative route reached a relative residual of {:.1e} after {} \
+                     iterations (budget {ITERATIVE_BUDGET}); near incompressibility the \
+                     short-range preconditioner is weak: a direct factor (solver.method = \
+                     \"cholesky\" or \"gmres\", solver.precision = \"mixed\") needs more \
+                     memory but no iterations",
+                    r.relative_residual, r.iterations
+                );
+            }
+        }
         self.accept(&x, residual, refinement_steps)?;
         self.low_rank.clear();
         self.refactor_next = false;
@@ -746,7 +864,7 @@ impl Pipeline {
         let t = Instant::now();
         let mut x = x0.to_vec();
         let cg = self.symmetric
-            && self.source == Source::Matrix
+            && matches!(self.source, Source::Matrix | Source::ShortRange)
             && matches!(self.factor, Factor::Cholesky(_));
         let report = if cg {
             let apply = |v: &[f64]| self.product(k, v);
@@ -882,6 +1000,7 @@ impl Pipeline {
     fn budget(&self) -> usize {
         match self.source {
             Source::Surrogate => SURROGATE_BUDGET,
+            Source::ShortRange => ITERATIVE_BUDGET,
             _ => SYMMETRIC_PART_BUDGET,
         }
     }
