@@ -198,7 +198,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         let (fresh, reused, iterations) = if model_kind == "bond_based" {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
             let mut pipeline =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
@@ -208,11 +208,11 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let mut other =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
             let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
             // The exact low-rank update of the old factor (one term per broken bond).
             let mut updated =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
             let mut intact = disc.clone();
             intact.bonds.intact.iter_mut().for_each(|f| *f = true);
             let k0 = Stiffness::assemble(&model, &intact, &dofs, updated.pattern());
@@ -257,7 +257,6 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 model.coupling(),
                 settings,
                 Some(surrogate.clone()),
-                None,
             )
             .unwrap();
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
@@ -273,15 +272,9 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
             assert_eq!(reused.report.route, Route::Reuse);
-            let mut other = Pipeline::analyse(
-                &disc,
-                &dofs,
-                model.coupling(),
-                settings,
-                Some(surrogate),
-                None,
-            )
-            .unwrap();
+            let mut other =
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, Some(surrogate))
+                    .unwrap();
             let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
             (fresh.x, reused.x, reused.report.iterations)
         };

@@ -209,3 +209,60 @@ fn the_iterative_route_gives_the_direct_answer() {
         );
     }
 }
+
+/// The two-level preconditioner's iteration count is bounded independently of
+/// the number of points at a fixed δ/Δx (module docs of `solve::two_level`);
+/// a preconditioner without a coarse level would need about twice the
+/// iterations for each halving of Δx (κ ∝ Δx⁻²).
+#[test]
+fn the_iteration_count_does_not_grow_with_the_points() {
+    let square = |n: usize| {
+        let h = 1.0 / n as f64;
+        format!(
+            "{PLATE_2D}[[regions]]\nmaterial = \"m\"\nspacing = {h}\nbox = {{ min = [0.0, 0.0], max = [1.0, 1.0] }}\n\
+             [[boundary]]\nname = \"clamp\"\nbox = {{ min = [0.0, 0.0], max = [{}, 1.0] }}\n\
+             displacement = {{ x = 0.0, y = 0.0 }}\n\
+             [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1e6, 3e5]\n",
+            3.01 * h
+        )
+    };
+    let iterations: Vec<usize> = [100, 200]
+        .iter()
+        .map(|&n| {
+            let s = solve(&square(n), "method = \"iterative\"");
+            assert!(s.residual <= 1e-10, "residual {:e}", s.residual);
+            s.counts.gmres.expect("a Krylov route").iterations
+        })
+        .collect();
+    // 16 at 2,500 points, where the clamp and the free edges are a large part
+    // of the body; 22 at 10,000, 40,000 and 160,000 (validation/solver/README.md).
+    println!("CG iterations at 10,000 / 40,000 points: {iterations:?}");
+    for pair in iterations.windows(2) {
+        assert!(
+            pair[1] as f64 <= 1.3 * pair[0] as f64,
+            "iterations grew from {} to {} when Δx halved",
+            pair[0],
+            pair[1]
+        );
+    }
+}
+
+/// Without `solver.method`, a factor that does not fit in the memory limit is
+/// replaced by the iterative route (with a note), which gives the direct answer.
+/// The cube's direct factor needs 269 MiB, its `K` 86 MiB (`tests/bad_scenes.rs`,
+/// `factor_above_memory_limit`, refuses it when the method is named).
+#[test]
+fn a_factor_that_does_not_fit_is_replaced_by_the_iterative_route() {
+    let cube = "[model]\ndimension = \"3d\"\n[materials.m]\nyoungs_modulus = 1e9\n\
+                [[regions]]\nmaterial = \"m\"\nspacing = 0.01\n\
+                box = { min = [0.0, 0.0, 0.0], max = [0.16, 0.16, 0.16] }\n\
+                [[boundary]]\nname = \"clamp\"\nbox = { min = [0.0, 0.0, 0.0], max = [0.011, 0.16, 0.16] }\n\
+                displacement = { x = 0.0, y = 0.0, z = 0.0 }\n\
+                [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1e6, 3e5, 0.0]\n";
+    let direct = solve(cube, "method = \"cholesky\"");
+    let limited = solve(cube, "memory_limit_gib = 0.12");
+    assert_eq!(direct.counts.solver, dhpd::scene::SolverMethod::Cholesky);
+    assert_eq!(limited.counts.solver, dhpd::scene::SolverMethod::Iterative);
+    let (diff, scale) = max_difference(&direct, &limited);
+    assert!(diff <= 1e-10 * scale, "|Δu| = {diff:e} of {scale:e}");
+}

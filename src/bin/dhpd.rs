@@ -250,6 +250,15 @@ fn print_report(scene: &Scene, s: &static_solve::StaticSolution, dir: &Path) {
         c.nnz_k,
         c.nnz_l.map_or("-".into(), |v| v.to_string())
     );
+    match (c.solver, c.gmres) {
+        (scene::SolverMethod::Iterative, Some(k)) => println!(
+            "solver: iterative (two-level preconditioner, coarse factor nnz {}), {} iterations",
+            c.nnz_l.map_or("-".into(), |v| v.to_string()),
+            k.iterations
+        ),
+        (method, Some(k)) => println!("solver: {method:?}, {} Krylov iterations", k.iterations),
+        (method, None) => println!("solver: {method:?}"),
+    }
     if let Some(o) = &c.ordering {
         let size = |v: Option<usize>| v.map_or("-".into(), |v| v.to_string());
         println!(

@@ -120,33 +120,6 @@ pub struct Discretization {
     pub groups: Vec<PointGroup>,
 }
 
-impl Discretization {
-    /// The same points with the horizons `horizon` and their bonds (the scene's
-    /// pre-cracks and partial-volume rule): the short-range stiffness that
-    /// preconditions the iterative solver route ([`crate::solve::short_range`]).
-    /// Named groups are not carried over.
-    pub fn with_horizons(&self, horizon: Vec<f64>, scene: &Scene) -> Result<Self, Error> {
-        let points = Points {
-            horizon,
-            ..self.points.clone()
-        };
-        let bonds = neighbours::find_bonds(
-            &points,
-            self.d,
-            &scene.cracks,
-            scene.volume_correction,
-            scene.memory_limit_bytes,
-        )?;
-        Ok(Self {
-            d: self.d,
-            points,
-            bonds,
-            removed_isolated: self.removed_isolated,
-            groups: Vec::new(),
-        })
-    }
-}
-
 /// The points of a scene before bonds are found, with the named groups of its meshes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawBody {

@@ -51,7 +51,10 @@ pub struct Counts {
     pub prescribed_dofs: usize,
     /// Stored entries of the reduced `K` (both triangles).
     pub nnz_k: usize,
-    /// Stored entries of the Cholesky factor (None for LU).
+    /// The solver route taken (`iterative` when a direct factor was too costly).
+    pub solver: crate::scene::SolverMethod,
+    /// Stored entries of the Cholesky factor (None for LU; the coarse factor
+    /// for the iterative route).
     pub nnz_l: Option<usize>,
     /// The factor's fill-reducing ordering and the sizes of those analysed.
     pub ordering: Option<crate::solve::pipeline::OrderingReport>,
@@ -250,7 +253,6 @@ pub fn solve_with<M: Model>(
             &scene.materials,
             scene.thickness,
         )),
-        Some(scene),
     )?;
     timings.pattern = pipeline.pattern_seconds;
     timings.symbolic_factorization = pipeline.symbolic_seconds;
@@ -297,6 +299,7 @@ pub fn solve_with<M: Model>(
         dofs: dofs.n_free(),
         prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
         nnz_k: pipeline.pattern().nnz(),
+        solver: pipeline.method(),
         nnz_l: pipeline.nnz_factor(),
         ordering: pipeline.ordering,
         pivots: pipeline.pivot_stats(),

@@ -283,6 +283,8 @@ pub struct Scene {
     pub loads: Vec<Load>,
     /// Solver method.
     pub solver: SolverMethod,
+    /// `solver.method` was not given: the pipeline may choose the iterative route.
+    pub solver_automatic: bool,
     /// User limit on the size of a sparse factor in bytes (`solver.memory_limit_gib`).
     pub memory_limit_bytes: Option<f64>,
     /// Fill-reducing ordering of the Cholesky factor (`solver.ordering`).
@@ -672,6 +674,20 @@ impl Scene {
                  which needs double precision; explicit runs factorise nothing)",
             ));
         }
+        if spec.solver.method == Some(SolverMethod::Iterative) {
+            for (key, present) in [
+                ("solver.ordering", spec.solver.ordering.is_some()),
+                ("solver.precision", spec.solver.precision.is_some()),
+            ] {
+                if present {
+                    return Err(InputError::new(
+                        key,
+                        "applies to the direct factor, which solver.method = \"iterative\" \
+                         does not compute; remove it or choose \"cholesky\" or \"gmres\"",
+                    ));
+                }
+            }
+        }
         if spec.solver.refactor_iterations == Some(0) {
             return Err(InputError::new(
                 "solver.refactor_iterations",
@@ -707,6 +723,7 @@ impl Scene {
                 ModelKind::BondBased => SolverMethod::Cholesky,
                 ModelKind::Shear => SolverMethod::Gmres,
             }),
+            solver_automatic: spec.solver.method.is_none(),
             ordering: spec.solver.ordering.unwrap_or_default(),
             precision: spec.solver.precision.unwrap_or_default(),
             memory_limit_bytes: match spec.solver.memory_limit_gib {

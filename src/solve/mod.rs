@@ -11,7 +11,7 @@ pub mod gmres;
 pub mod low_rank;
 pub mod ordering;
 pub mod pipeline;
-pub mod short_range;
+pub mod two_level;
 
 use crate::error::{MemoryLimit, NumericalError};
 use faer::dyn_stack::{MemBuffer, MemStack};

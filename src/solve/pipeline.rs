@@ -10,7 +10,7 @@
 //! | `cholesky` | `K = L Lᵀ`, triangular solves, refinement | CG preconditioned by the old `L Lᵀ` |
 //! | `lu` | `K = L U`, triangular solves, refinement | GMRES preconditioned by the old `L U` |
 //! | `gmres` | GMRES on `K` preconditioned by the Cholesky factor of a symmetric surrogate | GMRES with the old surrogate factor |
-//! | `iterative` | CG on `K` (GMRES if not symmetric) preconditioned by the factor of a short-range stiffness ([`super::short_range`]) | the same with the old factor |
+//! | `iterative` | CG on `K` (GMRES if not symmetric) preconditioned by a two-level cycle ([`super::two_level`]): no factor of `K` | the same with the old cycle |
 //!
 //! The surrogate of the `gmres` route is the bond-based stiffness on the bonded
 //! pairs (shear model: its pattern is the bond graph, far sparser than `K`'s
@@ -18,9 +18,14 @@
 //! surrogate stalls (near incompressibility it has no Poisson ratio), the route
 //! switches to the Cholesky factor of `(K + Kᵀ)/2`, and to LU when that is not
 //! positive definite; the switch is kept for later solves and said on stderr.
-//! A factor used only as a preconditioner is stored in single precision
-//! unless `solver.precision = "double"` (the Krylov iterations recover full
-//! accuracy either way).
+//!
+//! **Automatic route.** Unless the scene names a method (or runs fracture,
+//! whose re-solves update a factor exactly), a direct factor is replaced by the
+//! `iterative` route when the symbolic analysis predicts more than
+//! [`ITERATIVE_FROM_FLOPS_PER_ENTRY`] operations per stored entry of `K` (the
+//! factor's cost grows faster than the iterations'; 3D bodies cross it early).
+//! Any route whose factor does not fit in memory in either precision becomes
+//! `iterative`, with a note.
 //!
 //! When the factor of the `cholesky` or `gmres` route does not fit in memory
 //! in either precision, the route becomes `iterative`, with a note.
@@ -38,7 +43,7 @@ use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
 use super::low_rank::{LowRank, Term};
 use super::ordering::{nested_dissection, Ordering};
-use super::short_range::ShortRange;
+use super::two_level::TwoLevel;
 use super::{
     check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
     GMRES_TOLERANCE,
@@ -64,9 +69,17 @@ const SURROGATE_BUDGET: usize = 120;
 /// GMRES iterations allowed with the factor of the symmetric part.
 const SYMMETRIC_PART_BUDGET: usize = 600;
 
-/// Krylov iterations allowed with the short-range preconditioner
-/// (it needs 30-150 on the bodies measured, independent of their size).
+/// Krylov iterations allowed with the two-level preconditioner (it needs
+/// 15-25 on the bodies measured, independent of their size).
 pub const ITERATIVE_BUDGET: usize = 2000;
+
+/// Predicted factorisation operations per stored entry of `K` above which the
+/// automatic route is iterative. Measured (two threads): at 4.6e3 (2D,
+/// 40,000 points) a direct solve and the two-level iterations cost the same;
+/// 3D bodies reach 1e5 at 50,000 points, where the iterations are 8× faster.
+/// The margin keeps the direct route, which needs no iteration count to be
+/// trusted, wherever it is not clearly slower.
+pub const ITERATIVE_FROM_FLOPS_PER_ENTRY: f64 = 2e4;
 
 /// GMRES restart length.
 const GMRES_RESTART: usize = 60;
@@ -96,6 +109,12 @@ pub struct SolverSettings {
     pub ordering: Ordering,
     /// Precision of the Cholesky factor.
     pub precision: Precision,
+    /// The scene left the route to the solver: a factor that does not fit is
+    /// replaced by the `iterative` route, and so is a costly one outside
+    /// fracture runs.
+    pub automatic: bool,
+    /// A fracture run (re-solves update a direct factor exactly).
+    pub fracture: bool,
 }
 
 impl SolverSettings {
@@ -106,6 +125,8 @@ impl SolverSettings {
             memory_limit_bytes: scene.memory_limit_bytes,
             refactor_iterations: scene.refactor_iterations,
             ordering: scene.ordering,
+            automatic: scene.solver_automatic,
+            fracture: scene.quasi_static.is_some(),
             // Fracture re-solves update the factor exactly (low-rank terms),
             // which needs it in double precision.
             precision: if scene.quasi_static.is_some() {
@@ -149,13 +170,11 @@ const MIXED_ACCEPT: f64 = 1e-10;
 const MIXED_ITERATIONS: usize = 60;
 
 /// Stores `chol` in the precision `settings` ask for, and refuses a factor
-/// that does not fit in memory (`auto`: single precision when only that fits,
-/// and always for a `preconditioner`, whose errors the iterations remove).
+/// that does not fit in memory (`auto`: single precision when only that fits).
 fn choose_precision(
     chol: &mut Cholesky,
     nnz_k: usize,
     settings: &SolverSettings,
-    preconditioner: bool,
 ) -> Result<(), Error> {
     let limit = settings.memory_limit_bytes;
     let check = |chol: &Cholesky| {
@@ -172,7 +191,7 @@ fn choose_precision(
             chol.use_single_precision();
             check(chol)?;
         }
-        Precision::Auto if preconditioner || chol.nnz_l() >= MIXED_FROM_NNZ_L => {
+        Precision::Auto if chol.nnz_l() >= MIXED_FROM_NNZ_L => {
             chol.use_single_precision();
             check(chol)?;
         }
@@ -277,34 +296,6 @@ fn analyse_cholesky(
     Ok((chol, report))
 }
 
-/// The short-range preconditioner of the `iterative` route: its points and
-/// bonds, pattern and analysed factor (in single precision unless
-/// `solver.precision = "double"`).
-fn short_range(
-    disc: &Discretization,
-    dofs: &DofMap,
-    scene: &Scene,
-    settings: &SolverSettings,
-    ordering: &mut Option<OrderingReport>,
-) -> Result<(Surrogate, Factor), Error> {
-    let short = ShortRange::new(disc, scene)?;
-    let pattern = Pattern::new(
-        &short.disc,
-        dofs,
-        Coupling::Star,
-        settings.memory_limit_bytes,
-    )?;
-    let (mut chol, report) = analyse_cholesky(&pattern, &short.disc, dofs, settings.ordering)?;
-    *ordering = Some(report);
-    choose_precision(&mut chol, pattern.nnz(), settings, true)?;
-    let surrogate = Surrogate {
-        disc: Some(short.disc),
-        pattern,
-        model: short.model,
-    };
-    Ok((surrogate, Factor::Cholesky(chol)))
-}
-
 /// How a solve was done.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -368,15 +359,13 @@ enum Source {
     SymmetricPart,
     /// The bond-based stiffness on the bond pattern (GMRES on the shear model).
     Surrogate,
-    /// The bond-based stiffness of short horizons (the `iterative` route).
-    ShortRange,
+    /// `K` itself, through the two-level preconditioner (the `iterative` route).
+    TwoLevel,
 }
 
-/// A symmetric positive definite matrix the pipeline assembles itself and
-/// factorises as a preconditioner.
+/// The bond-based stiffness on the bonds of `K`, which the `gmres` route
+/// assembles itself and factorises as a preconditioner.
 struct Surrogate {
-    /// Its own points and bonds (short range), or None: those of `K`.
-    disc: Option<crate::discretization::Discretization>,
     pattern: Pattern,
     model: BondBased,
 }
@@ -384,13 +373,18 @@ struct Surrogate {
 enum Factor {
     Cholesky(Cholesky),
     Lu(SparseLu),
+    /// Built at the numeric stage, from the values of `K`.
+    TwoLevel(Option<TwoLevel>),
 }
 
 impl Factor {
+    /// A direct factor's solve (the two-level cycle goes through
+    /// [`Pipeline::precondition`], which has `K`).
     fn solve_in_place(&self, b: &mut [f64]) {
         match self {
             Factor::Cholesky(c) => c.solve_in_place(b),
             Factor::Lu(l) => l.solve_in_place(b),
+            Factor::TwoLevel(_) => unreachable!("the two-level cycle needs K"),
         }
     }
 
@@ -443,76 +437,84 @@ pub struct Pipeline {
 impl Pipeline {
     /// Builds the pattern of `K` for `coupling` and runs the symbolic analysis of
     /// the route, before any value is assembled, so that a factor too large for
-    /// memory is refused early. `surrogate` is the bond-based model the `gmres`
-    /// route factorises for a `Family` coupling; `scene` is what the short-range
-    /// preconditioner is built from (None: the `iterative` route is not
-    /// available, and a factor that does not fit is refused).
+    /// memory is refused early (or replaced by the `iterative` route). `surrogate`
+    /// is the bond-based model the `gmres` route factorises for a `Family` coupling.
     pub fn analyse(
         disc: &Discretization,
         dofs: &DofMap,
         coupling: Coupling,
         settings: SolverSettings,
         surrogate: Option<BondBased>,
-        scene: Option<&Scene>,
     ) -> Result<Self, Error> {
         let t = Instant::now();
         let limit = settings.memory_limit_bytes;
         let pattern = Pattern::new(disc, dofs, coupling, limit)?;
         let mut surrogate = match (settings.method, coupling, surrogate) {
             (SolverMethod::Gmres, Coupling::Family, Some(model)) => Some(Surrogate {
-                disc: None,
                 pattern: Pattern::new(disc, dofs, Coupling::Star, limit)?,
                 model,
             }),
             _ => None,
         };
-        let mut pattern_seconds = t.elapsed().as_secs_f64();
+        let pattern_seconds = t.elapsed().as_secs_f64();
         let t = Instant::now();
         let mut ordering = None;
-        let mut direct = |surrogate: &Option<Surrogate>| -> Result<_, Error> {
-            let (source, structure) = match (surrogate, settings.method) {
-                (Some(s), _) => (Source::Surrogate, &s.pattern),
-                (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
-                _ => (Source::Matrix, &pattern),
-            };
-            let (mut chol, report) = analyse_cholesky(structure, disc, dofs, settings.ordering)?;
-            ordering = Some(report);
-            choose_precision(
-                &mut chol,
-                structure.nnz(),
-                &settings,
-                source != Source::Matrix,
-            )?;
-            Ok((source, Factor::Cholesky(chol)))
-        };
+        let iterative = (Source::TwoLevel, Factor::TwoLevel(None));
         let (source, factor) = match settings.method {
             SolverMethod::Lu => (
                 Source::Matrix,
                 Factor::Lu(SparseLu::analyse(pattern.symbolic())?),
             ),
-            SolverMethod::Cholesky | SolverMethod::Gmres => match (direct(&surrogate), scene) {
-                (Ok(route), _) => route,
-                (Err(Error::Numerical(e @ NumericalError::TooLarge { .. })), Some(scene)) => {
-                    eprintln!(
-                        "note: {e}; solving iteratively instead (solver.method = \"iterative\": \
-                         Krylov iterations preconditioned by the factor of a short-range stiffness)"
-                    );
-                    drop(surrogate.take()); // free its pattern before the next
-                    let (short, chol) = short_range(disc, dofs, scene, &settings, &mut ordering)?;
-                    surrogate = Some(short);
-                    (Source::ShortRange, chol)
+            SolverMethod::Iterative => iterative,
+            SolverMethod::Cholesky | SolverMethod::Gmres => {
+                let (source, structure) = match (&surrogate, settings.method) {
+                    (Some(s), _) => (Source::Surrogate, &s.pattern),
+                    (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
+                    _ => (Source::Matrix, &pattern),
+                };
+                let (mut chol, report) =
+                    analyse_cholesky(structure, disc, dofs, settings.ordering)?;
+                let per_entry = chol.flops() / pattern.nnz().max(1) as f64;
+                match choose_precision(&mut chol, structure.nnz(), &settings) {
+                    Ok(())
+                        if settings.automatic
+                            && !settings.fracture
+                            && per_entry > ITERATIVE_FROM_FLOPS_PER_ENTRY =>
+                    {
+                        eprintln!(
+                            "note: a direct factor would cost {:.1e} operations ({per_entry:.1e} \
+                             per entry of K); solving iteratively instead (set solver.method \
+                             to factorise)",
+                            chol.flops()
+                        );
+                        surrogate = None;
+                        iterative
+                    }
+                    Ok(()) => {
+                        ordering = Some(report);
+                        (source, Factor::Cholesky(chol))
+                    }
+                    Err(Error::Numerical(e @ NumericalError::TooLarge { .. }))
+                        if settings.automatic =>
+                    {
+                        eprintln!(
+                            "note: {e}; solving iteratively instead (solver.method = \
+                             \"iterative\": Krylov iterations with a two-level preconditioner, \
+                             no factor of K)"
+                        );
+                        surrogate = None;
+                        iterative
+                    }
+                    Err(e) => {
+                        if matches!(e, Error::Numerical(NumericalError::TooLarge { .. })) {
+                            eprintln!(
+                                "note: solver.method = \"iterative\" (the default when \
+                                 solver.method is left out) stores no factor of K"
+                            );
+                        }
+                        return Err(e);
+                    }
                 }
-                (Err(e), _) => return Err(e),
-            },
-            SolverMethod::Iterative => {
-                let scene = scene.ok_or_else(|| {
-                    NumericalError::Solver("the iterative route needs the scene".into())
-                })?;
-                let t = Instant::now();
-                let (short, chol) = short_range(disc, dofs, scene, &settings, &mut ordering)?;
-                pattern_seconds += t.elapsed().as_secs_f64();
-                surrogate = Some(short);
-                (Source::ShortRange, chol)
             }
         };
         Ok(Self {
@@ -552,10 +554,21 @@ impl Pipeline {
         self.pattern
     }
 
+    /// The route this pipeline solves by (`iterative` when it replaced a factor).
+    pub fn method(&self) -> SolverMethod {
+        match (self.source, &self.factor) {
+            (Source::TwoLevel, _) => SolverMethod::Iterative,
+            (_, Factor::Lu(_)) => SolverMethod::Lu,
+            (Source::Surrogate | Source::SymmetricPart, _) => SolverMethod::Gmres,
+            _ => SolverMethod::Cholesky,
+        }
+    }
+
     /// Stored entries of the current factor (Cholesky), if known.
     pub fn nnz_factor(&self) -> Option<usize> {
         match &self.factor {
             Factor::Cholesky(c) => Some(c.nnz_l()),
+            Factor::TwoLevel(t) => t.as_ref().map(TwoLevel::nnz_coarse_factor),
             Factor::Lu(_) => None,
         }
     }
@@ -564,7 +577,7 @@ impl Pipeline {
     pub fn pivot_stats(&self) -> Option<PivotStats> {
         match &self.factor {
             Factor::Cholesky(c) => c.pivot_stats,
-            Factor::Lu(_) => None,
+            _ => None,
         }
     }
 
@@ -580,14 +593,9 @@ impl Pipeline {
         self.transpose.as_deref().expect("just computed")
     }
 
-    /// `K x`, in parallel over columns.
+    /// `K x`, in parallel.
     fn product(&self, k: &Stiffness, x: &[f64]) -> Vec<f64> {
-        let transpose = if self.symmetric {
-            None
-        } else {
-            self.transpose.as_deref()
-        };
-        k.mul_parallel(&self.pattern, transpose, x)
+        k.mul_parallel(&self.pattern, self.symmetric, x)
     }
 
     /// Numeric factorisation of the current source for `k`.
@@ -598,18 +606,25 @@ impl Pipeline {
         k: &Stiffness,
     ) -> Result<(), Error> {
         self.factored = false;
+        if self.source == Source::TwoLevel {
+            let product = |v: &[f64]| self.product(k, v);
+            let two_level = TwoLevel::new(disc, dofs, &self.pattern, &k.values, &product)
+                .map_err(|e| factor_error(e, dofs, disc))?;
+            self.factor = Factor::TwoLevel(Some(two_level));
+            self.factored = true;
+            return Ok(());
+        }
         let surrogate_values;
         let symmetric_values;
         let matrix = match self.source {
-            Source::Matrix => k.view(&self.pattern),
+            Source::Matrix | Source::TwoLevel => k.view(&self.pattern),
             Source::SymmetricPart => {
                 symmetric_values = k.symmetric_part(self.transpose());
                 symmetric_values.view(&self.pattern)
             }
-            Source::Surrogate | Source::ShortRange => {
+            Source::Surrogate => {
                 let s = self.surrogate.as_ref().expect("surrogate route");
-                let points = s.disc.as_ref().unwrap_or(disc);
-                let mut values = Stiffness::assemble(&s.model, points, dofs, &s.pattern);
+                let mut values = Stiffness::assemble(&s.model, disc, dofs, &s.pattern);
                 if let Some((pinned, diagonal)) = &self.pinned {
                     values.pin(&s.pattern, pinned, *diagonal, None);
                 }
@@ -620,6 +635,7 @@ impl Pipeline {
         let result = match &mut self.factor {
             Factor::Cholesky(c) => c.factorize(matrix),
             Factor::Lu(l) => l.factorize(matrix),
+            Factor::TwoLevel(_) => unreachable!("built above"),
         };
         result.map_err(|e| factor_error(e, dofs, disc))?;
         self.factored = true;
@@ -631,12 +647,12 @@ impl Pipeline {
     fn use_double_precision(&mut self) -> Result<(), Error> {
         self.settings.precision = Precision::Double;
         let nnz_k = match (&self.surrogate, self.source) {
-            (Some(s), Source::Surrogate | Source::ShortRange) => s.pattern.nnz(),
+            (Some(s), Source::Surrogate) => s.pattern.nnz(),
             _ => self.pattern.nnz(),
         };
         if let Factor::Cholesky(chol) = &mut self.factor {
             chol.use_double_precision();
-            choose_precision(chol, nnz_k, &self.settings, false)?;
+            choose_precision(chol, nnz_k, &self.settings)?;
         }
         Ok(())
     }
@@ -653,7 +669,7 @@ impl Pipeline {
             let (mut chol, report) =
                 analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering)?;
             self.ordering = Some(report);
-            choose_precision(&mut chol, self.pattern.nnz(), &self.settings, false)?;
+            choose_precision(&mut chol, self.pattern.nnz(), &self.settings)?;
             let full = k.symmetric_part(self.transpose());
             match chol.factorize(full.view(&self.pattern)) {
                 Ok(()) => {
@@ -680,8 +696,7 @@ impl Pipeline {
     }
 
     /// Factorises `k` afresh and solves `K x = rhs`, with refinement (direct
-    /// routes) and the residual check. The transposed positions are built here
-    /// when the route needs them.
+    /// routes) and the residual check.
     pub fn solve(
         &mut self,
         disc: &Discretization,
@@ -689,9 +704,6 @@ impl Pipeline {
         k: &Stiffness,
         rhs: &[f64],
     ) -> Result<Solved, Error> {
-        if !self.symmetric {
-            self.transpose();
-        }
         let t = Instant::now();
         if let Err(e) = self.factorize(disc, dofs, k) {
             if !self.factor.is_single() {
@@ -752,9 +764,9 @@ impl Pipeline {
             let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
             (residual, refinement_steps) = refine(&apply, &solve, rhs, &mut x);
             self.costs.fresh_iterations = 0;
-        } else if self.source == Source::ShortRange && self.symmetric {
+        } else if self.source == Source::TwoLevel && self.symmetric {
             let apply = |v: &[f64]| self.product(k, v);
-            let precondition = |v: &mut [f64]| self.precondition(v);
+            let precondition = |v: &mut [f64]| self.precondition(k, v);
             let cg = pcg(
                 &apply,
                 &precondition,
@@ -806,7 +818,7 @@ impl Pipeline {
             report = Some(first);
         }
         let solve_seconds = t.elapsed().as_secs_f64();
-        if let (Source::ShortRange, Some(r)) = (self.source, &report) {
+        if let (Source::TwoLevel, Some(r)) = (self.source, &report) {
             // Large systems stop at the round-off floor of their products.
             if !(r.relative_residual <= MIXED_ACCEPT) {
                 eprintln!(
@@ -864,11 +876,11 @@ impl Pipeline {
         let t = Instant::now();
         let mut x = x0.to_vec();
         let cg = self.symmetric
-            && matches!(self.source, Source::Matrix | Source::ShortRange)
-            && matches!(self.factor, Factor::Cholesky(_));
+            && matches!(self.source, Source::Matrix | Source::TwoLevel)
+            && !matches!(self.factor, Factor::Lu(_));
         let report = if cg {
             let apply = |v: &[f64]| self.product(k, v);
-            let precondition = |v: &mut [f64]| self.precondition(v);
+            let precondition = |v: &mut [f64]| self.precondition(k, v);
             pcg(&apply, &precondition, rhs, &mut x, tolerance, cap)
         } else {
             self.gmres_to(k, rhs, &mut x, cap, tolerance)
@@ -912,7 +924,7 @@ impl Pipeline {
         tolerance: f64,
     ) -> GmresReport {
         let apply = |v: &[f64]| self.product(k, v);
-        let precondition = |v: &mut [f64]| self.precondition(v);
+        let precondition = |v: &mut [f64]| self.precondition(k, v);
         gmres(
             &apply,
             &precondition,
@@ -925,8 +937,11 @@ impl Pipeline {
     }
 
     /// The old factor's solve, corrected by the low-rank terms removed since.
-    fn precondition(&self, v: &mut [f64]) {
-        self.factor.solve_in_place(v);
+    fn precondition(&self, k: &Stiffness, v: &mut [f64]) {
+        match &self.factor {
+            Factor::TwoLevel(Some(t)) => t.apply(&|x: &[f64]| self.product(k, x), v),
+            factor => factor.solve_in_place(v),
+        }
         if !self.low_rank.is_empty() {
             let x = self.low_rank.apply(v);
             v.copy_from_slice(&x);
@@ -1000,7 +1015,7 @@ impl Pipeline {
     fn budget(&self) -> usize {
         match self.source {
             Source::Surrogate => SURROGATE_BUDGET,
-            Source::ShortRange => ITERATIVE_BUDGET,
+            Source::TwoLevel => ITERATIVE_BUDGET,
             _ => SYMMETRIC_PART_BUDGET,
         }
     }
@@ -1027,7 +1042,7 @@ impl Pipeline {
     fn measure_iteration(&self, k: &Stiffness, rhs: &[f64]) -> f64 {
         let t = Instant::now();
         let mut v = self.product(k, rhs);
-        self.factor.solve_in_place(&mut v);
+        self.precondition(k, &mut v);
         t.elapsed().as_secs_f64()
     }
 

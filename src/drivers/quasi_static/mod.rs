@@ -328,7 +328,6 @@ fn run_with<M: Model>(
         model.coupling(),
         SolverSettings::of(scene),
         surrogate,
-        Some(scene),
     )?;
     timings.pattern = pipeline.pattern_seconds;
     timings.symbolic_factorization = pipeline.symbolic_seconds;
