@@ -135,8 +135,8 @@ fn main() {
         }
         let c = &s.counts;
         info = format!(
-            "{} points, {} bonds, {} dofs, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, krylov iterations {}, residual {:.1e}, ordering {}",
-            c.points, c.bonds, c.dofs, c.nnz_k, c.nnz_l.map_or("-".into(), |v| v.to_string()), c.asymmetry,
+            "{} points, {} bonds, {} dofs, solver {:?}, nnz(K) {}, nnz(L) {}, asymmetry {:.2e}, krylov iterations {}, residual {:.1e}, ordering {}",
+            c.points, c.bonds, c.dofs, c.solver, c.nnz_k, c.nnz_l.map_or("-".into(), |v| v.to_string()), c.asymmetry,
             c.gmres.map_or("-".into(), |g| g.iterations.to_string()), s.residual,
             c.ordering.map_or("-".into(), |o| format!(
                 "{:?} (nnz(L) AMD {:?}, ND {:?}; flops AMD {:.3e}, ND {:.3e}; dissection {:.3} s)",

@@ -279,6 +279,7 @@ const CASES: &[Case] = &[
     c("bonds_counted_above_memory_limit", &[Whole(COARSE_OVER_FINE)], None, 3, &["the bonds (more than", "solver.memory_limit_gib"]),
     c("pattern_above_memory_limit", &[Add("\n[solver]\nmemory_limit_gib = 3e-4\n")], None, 3, &["the stiffness pattern", "solver.memory_limit_gib"]),
     c("factor_above_memory_limit", &[Whole(CUBE_3D), Rep("[solver]\n", "[solver]\nmethod = \"cholesky\"\n")], None, 3, &["the sparse factor would need", "solver.memory_limit_gib", "solver.method = \"iterative\""]),
+    c("lu_on_a_large_body", &[Whole(CUBE_3D), Rep("spacing = 0.01", "spacing = 0.008"), Rep("[solver]\n", "[solver]\nmethod = \"lu\"\n")], None, 2, &["solver.method", "20000 free unknowns", "iterative"]),
     c("iterative_with_precision", &[Add("\n[solver]\nmethod = \"iterative\"\nprecision = \"mixed\"\n")], None, 2, &["solver.precision", "iterative"]),
     c("iterative_with_ordering", &[Add("\n[solver]\nmethod = \"iterative\"\nordering = \"amd\"\n")], None, 2, &["solver.ordering", "iterative"]),
     c("mixed_precision_in_a_fracture_run", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[solver]\nprecision = \"mixed\"\n")], None, 2, &["solver.precision", "double precision"]),
