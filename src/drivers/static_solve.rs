@@ -195,12 +195,6 @@ impl Prepared {
     }
 }
 
-/// Poisson ratio from which the weighted dilatation's boundary error, multiplied
-/// by λ, dominates (validation/stability: L2(u) error 1.2× the ν = 0.3 value at
-/// ν = 0.49, 1.7× at 0.4999, and spurious boundary stresses of several times the
-/// peak stress).
-const NEAR_INCOMPRESSIBLE: f64 = 0.49;
-
 /// Suggests the gradient dilatation for nearly incompressible shear-model
 /// materials in plane strain and 3D (plane stress stays compressible).
 fn warn_near_incompressible(scene: &Scene) {
@@ -210,7 +204,7 @@ fn warn_near_incompressible(scene: &Scene) {
     if let Some(m) = scene
         .materials
         .iter()
-        .find(|m| m.poisson_ratio >= NEAR_INCOMPRESSIBLE)
+        .find(|m| m.poisson_ratio >= crate::model::shear::NEAR_INCOMPRESSIBLE)
     {
         eprintln!(
             "note: material {:?} has ν = {}: nearly incompressible; the weighted dilatation's \

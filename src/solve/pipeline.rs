@@ -122,6 +122,10 @@ pub struct SolverSettings {
     pub automatic: bool,
     /// A fracture run (re-solves update a direct factor exactly).
     pub fracture: bool,
+    /// The shear model with a nearly incompressible material
+    /// ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]), where the two-level
+    /// preconditioner is weak: cost alone never selects it.
+    pub near_incompressible: bool,
 }
 
 impl SolverSettings {
@@ -134,6 +138,11 @@ impl SolverSettings {
             ordering: scene.ordering,
             automatic: scene.solver_automatic,
             fracture: scene.quasi_static.is_some(),
+            near_incompressible: scene.model == crate::scene::ModelKind::Shear
+                && scene
+                    .materials
+                    .iter()
+                    .any(|m| m.poisson_ratio >= crate::model::shear::NEAR_INCOMPRESSIBLE),
             // Fracture re-solves update the factor exactly (low-rank terms),
             // which needs it in double precision.
             precision: if scene.quasi_static.is_some() {
@@ -499,6 +508,7 @@ impl Pipeline {
                     Ok(())
                         if settings.automatic
                             && !settings.fracture
+                            && !settings.near_incompressible
                             && per_entry > ITERATIVE_FROM_FLOPS_PER_ENTRY =>
                     {
                         eprintln!(
@@ -628,8 +638,7 @@ impl Pipeline {
         self.factored = false;
         if self.source == Source::TwoLevel {
             let product = |v: &[f64]| self.product(k, v);
-            let two_level = TwoLevel::new(disc, dofs, &self.pattern, &k.values, &product)
-                .map_err(|e| factor_error(e, dofs, disc))?;
+            let two_level = TwoLevel::new(disc, dofs, &self.pattern, &k.values, &product)?;
             self.factor = Factor::TwoLevel(Some(two_level));
             self.factored = true;
             return Ok(());

@@ -37,6 +37,7 @@ use super::{Cholesky, FactorError};
 use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 use crate::discretization::Discretization;
+use crate::error::NumericalError;
 use crate::geometry::{norm, sub};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use rayon::prelude::*;
@@ -81,7 +82,7 @@ impl TwoLevel {
         pattern: &Pattern,
         values: &[f64],
         product: &dyn Fn(&[f64]) -> Vec<f64>,
-    ) -> Result<Self, FactorError> {
+    ) -> Result<Self, NumericalError> {
         let point_aggregate = aggregate_points(disc, pattern);
         let n_aggregates = point_aggregate.iter().max().map_or(0, |&a| a as usize + 1);
         let n = dofs.n_free();
@@ -105,8 +106,21 @@ impl TwoLevel {
         let n_coarse = coarse_offsets[n_aggregates];
         let structure =
             SymbolicSparseColMatRef::new_checked(n_coarse, n_coarse, &col_ptr, None, &row_idx);
-        let mut coarse = Cholesky::analyse(structure, None).map_err(|_| FactorError::Generic)?;
-        coarse.factorize(SparseColMatRef::new(structure, &coarse_values))?;
+        let mut coarse = Cholesky::analyse(structure, None)?;
+        coarse
+            .factorize(SparseColMatRef::new(structure, &coarse_values))
+            .map_err(|e| {
+                NumericalError::Solver(match e {
+                    FactorError::NonPositivePivot(_) | FactorError::NearlySingular(..) => {
+                        "the coarse matrix of the two-level preconditioner (the rigid motions \
+                         of small point groups) is not positive definite: the symmetric part of \
+                         K is indefinite (the gradient dilatation near ν = 1/2) or the body is \
+                         under-constrained; use solver.method = \"gmres\" or \"lu\""
+                            .into()
+                    }
+                    _ => "the coarse factorisation of the two-level preconditioner failed".into(),
+                })
+            })?;
         let inverse_diagonal: Vec<f64> = (0..n)
             .map(|c| {
                 let range = pattern.col_ptr[c]..pattern.col_ptr[c + 1];
