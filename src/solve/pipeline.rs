@@ -852,10 +852,10 @@ impl Pipeline {
             if !(r.relative_residual <= MIXED_ACCEPT) {
                 eprintln!(
                     "note: the iterative route reached a relative residual of {:.1e} after {} \
-                     iterations (budget {ITERATIVE_BUDGET}); near incompressibility the \
-                     short-range preconditioner is weak: a direct factor (solver.method = \
-                     \"cholesky\" or \"gmres\", solver.precision = \"mixed\") needs more \
-                     memory but no iterations",
+                     iterations (budget {ITERATIVE_BUDGET}): the two-level preconditioner is \
+                     weak near incompressibility, and no route goes below the round-off \
+                     floor of an ill-conditioned system (a stiff part carried by a far \
+                     softer one, a slender body in bending)",
                     r.relative_residual, r.iterations
                 );
             }
