@@ -84,8 +84,9 @@ pub const ITERATIVE_BUDGET: usize = 2000;
 /// automatic route is iterative. Measured (two threads): at 4.6e3 (2D,
 /// 40,000 points) a direct solve and the two-level iterations cost the same;
 /// 3D bodies reach 1e5 at 50,000 points, where the iterations are 8× faster.
-/// The margin keeps the direct route, which needs no iteration count to be
-/// trusted, wherever it is not clearly slower.
+/// The margin keeps the direct route, whose cost does not depend on the
+/// conditioning and whose failures name the point of a mechanism, wherever it
+/// is not clearly slower.
 pub const ITERATIVE_FROM_FLOPS_PER_ENTRY: f64 = 2e4;
 
 /// GMRES restart length.
