@@ -272,6 +272,7 @@ const CASES: &[Case] = &[
     c("isolated_point_default_policy", &[Add(PF)], Some("1.0 1.0 1e-6\n"), 3, &["discretization.isolated_points", "point"]),
     c("point_held_by_a_single_bond", &[Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["non-positive pivot at point 200", "component 1"]),
     // The mixed-precision route falls back to double precision and reports the same point.
+    c("point_held_by_a_single_bond_iterative", &[Add("\n[solver]\nmethod = \"iterative\"\n"), Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["not positive definite", "mechanism", "solver.method = \"cholesky\" names the point"]),
     c("point_held_by_a_single_bond_mixed_precision", &[Add("\n[solver]\nprecision = \"mixed\"\n"), Rep("horizon_factor = 3.015", "horizon_factor = 3.015\nvolume_correction = \"none\""), Add(PF)], Some("0.235 0.055 1e-4 0.0405\n"), 3, &["single-precision factorisation failed", "factorising in double precision", "non-positive pivot at point 200", "component 1"]),
     // Every large structure is checked before it is allocated: the bonds (an
     // estimate, then the running count), the stiffness pattern, the factor.

@@ -11,7 +11,9 @@ use super::gmres::GmresReport as KrylovReport;
 /// Solves `A x = b` from the initial guess `x`, with `apply(v) = A v` and
 /// `precondition(v) ≈ A⁻¹ v` in place, until `‖b − A x‖ ≤ tol ‖b‖` or
 /// `max_iterations` products were spent. The true residual is recomputed at
-/// the end (it is what the report gives).
+/// the end (it is what the report gives). `stagnated` reports a breakdown:
+/// a search direction `p` with `pᵀ A p ≤ 0`, so `A` is not positive definite
+/// (a mechanism) unless round-off at convergence caused it.
 pub fn pcg(
     apply: &dyn Fn(&[f64]) -> Vec<f64>,
     precondition: &dyn Fn(&mut [f64]),
@@ -39,12 +41,14 @@ pub fn pcg(
     precondition(&mut z);
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
+    let mut broke_down = false;
     while norm(&r) > tol * b_norm && iterations < max_iterations {
         let ap = apply(&p);
         iterations += 1;
         let pap = dot(&p, &ap);
         if !(pap > 0.0) {
             // Not positive definite along p (or round-off at convergence): stop.
+            broke_down = true;
             break;
         }
         let alpha = rz / pap;
@@ -65,7 +69,7 @@ pub fn pcg(
         iterations,
         relative_residual: true_residual,
         converged: true_residual <= tol,
-        stagnated: false,
+        stagnated: broke_down && true_residual > tol,
     }
 }
 

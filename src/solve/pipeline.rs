@@ -805,6 +805,16 @@ impl Pipeline {
                 GMRES_TOLERANCE,
                 ITERATIVE_BUDGET,
             );
+            if cg.stagnated {
+                return Err(NumericalError::Solver(format!(
+                    "the stiffness matrix is not positive definite: CG met a direction of zero \
+                     or negative stiffness after {} iterations (a mechanism: a point held by \
+                     too few bonds or by bonds all along one line); solver.method = \
+                     \"cholesky\" names the point",
+                    cg.iterations
+                ))
+                .into());
+            }
             self.costs.fresh_iterations = cg.iterations;
             residual = cg.relative_residual;
             refinement_steps = 0;
