@@ -57,6 +57,9 @@ const POWER_ITERATIONS: usize = 12;
 /// Most coarse unknowns per aggregate (3 translations and 3 rotations).
 const MAX_MODES: usize = 6;
 
+/// Marker for "no aggregate" / "no slot".
+const NONE: u32 = u32::MAX;
+
 /// The two-level preconditioner of one matrix `K`.
 pub struct TwoLevel {
     /// Aggregate of each free unknown.
@@ -256,7 +259,6 @@ fn aggregate_points(disc: &Discretization, pattern: &Pattern) -> Vec<u32> {
             .map(|&r| r as usize)
             .filter(move |&r| r != q && norm(&sub(&p.x[r], &p.x[q])) <= reach)
     };
-    const NONE: u32 = u32::MAX;
     let mut aggregate = vec![NONE; n];
     let mut count = 0u32;
     for q in 0..n {
@@ -397,41 +399,45 @@ fn coarse_matrix(
     members: &[u32],
 ) -> (Vec<usize>, Vec<usize>, Vec<f64>) {
     let n_aggregates = coarse_offsets.len() - 1;
-    // Column block of aggregate a: the row aggregates it meets and their blocks
-    // (k_b × k_a, row-major by coarse row within b).
-    let blocks: Vec<Vec<(u32, Vec<f64>)>> = (0..n_aggregates)
+    // Column block of aggregate a: the row aggregates it meets and their blocks,
+    // accumulated as full 6 × 6 arrays (rows of P beyond k are zero), so that the
+    // inner product runs in vector lanes; entry (m, l) at m * 6 + l.
+    type Block = [f64; MAX_MODES * MAX_MODES];
+    let blocks: Vec<Vec<(u32, Block)>> = (0..n_aggregates)
         .into_par_iter()
-        .map(|a| {
-            let ka = coarse_offsets[a + 1] - coarse_offsets[a];
-            let mut found: Vec<(u32, Vec<f64>)> = Vec::new();
-            let mut slot: std::collections::HashMap<u32, usize> = Default::default();
-            for &col in &members[members_offsets[a]..members_offsets[a + 1]] {
-                let pc = &rows[col as usize];
-                for k in pattern.col_ptr[col as usize]..pattern.col_ptr[col as usize + 1] {
-                    let row = pattern.row_idx[k];
-                    let b = aggregate[row];
-                    let kb = coarse_offsets[b as usize + 1] - coarse_offsets[b as usize];
-                    let s = *slot.entry(b).or_insert_with(|| {
-                        found.push((b, vec![0.0; kb * ka]));
-                        found.len() - 1
-                    });
-                    let block = &mut found[s].1;
-                    let pr = &rows[row];
-                    let v = values[k];
-                    for m in 0..kb {
-                        let t = pr[m] * v;
-                        for l in 0..ka {
-                            block[m * ka + l] += t * pc[l];
+        .map_init(
+            // Per thread: the slot of each row aggregate in `found` (NONE: not met yet).
+            || vec![NONE; n_aggregates],
+            |slot, a| {
+                let mut found: Vec<(u32, Block)> = Vec::new();
+                for &col in &members[members_offsets[a]..members_offsets[a + 1]] {
+                    let pc = &rows[col as usize];
+                    for k in pattern.col_ptr[col as usize]..pattern.col_ptr[col as usize + 1] {
+                        let row = pattern.row_idx[k];
+                        let b = aggregate[row] as usize;
+                        if slot[b] == NONE {
+                            slot[b] = found.len() as u32;
+                            found.push((b as u32, [0.0; MAX_MODES * MAX_MODES]));
+                        }
+                        let block = &mut found[slot[b] as usize].1;
+                        let pr = &rows[row];
+                        let v = values[k];
+                        for m in 0..MAX_MODES {
+                            let t = pr[m] * v;
+                            for l in 0..MAX_MODES {
+                                block[m * MAX_MODES + l] += t * pc[l];
+                            }
                         }
                     }
                 }
-            }
-            found.sort_unstable_by_key(|(b, _)| *b);
-            found
-        })
+                found.iter().for_each(|(b, _)| slot[*b as usize] = NONE);
+                found.sort_unstable_by_key(|(b, _)| *b);
+                found
+            },
+        )
         .collect();
     // Symmetric part: K_c[b,a] and K_c[a,b]ᵀ averaged.
-    let lookup = |b: usize, a: usize| -> Option<&Vec<f64>> {
+    let lookup = |b: usize, a: usize| -> Option<&Block> {
         let list = &blocks[b];
         list.binary_search_by_key(&(a as u32), |(x, _)| *x)
             .ok()
@@ -448,8 +454,8 @@ fn coarse_matrix(
                 let kb = coarse_offsets[b + 1] - coarse_offsets[b];
                 let mirror = lookup(b, a);
                 for m in 0..kb {
-                    let here = block[m * ka + l];
-                    let there = mirror.map_or(here, |t| t[l * kb + m]);
+                    let here = block[m * MAX_MODES + l];
+                    let there = mirror.map_or(here, |t| t[l * MAX_MODES + m]);
                     row_idx.push(coarse_offsets[b] + m);
                     out.push(0.5 * (here + there));
                 }
