@@ -37,16 +37,38 @@ pub enum Ordering {
     NestedDissection,
 }
 
-/// The nested-dissection order of the free unknowns: `order[k]` is the free
-/// unknown eliminated `k`-th.
-pub fn nested_dissection(x: &[[f64; 3]], dofs: &DofMap, pattern: &Pattern) -> Vec<usize> {
+/// A nested-dissection order and the size of its root separator.
+pub struct Dissection {
+    /// `order[k]` is the free unknown eliminated `k`-th.
+    pub order: Vec<usize>,
+    /// Free unknowns of the root separator, eliminated last. Every one of its
+    /// points is coupled to the near half, so when that half is connected the
+    /// separator's block of the factor is dense: the factorisation needs at
+    /// least `s³/3` multiply-adds ([`Dissection::root_flops`]).
+    pub root_separator: usize,
+}
+
+impl Dissection {
+    /// The dense root separator's share of the factorisation flops, `Σ_{k≤s} k²`.
+    pub fn root_flops(&self) -> f64 {
+        let s = self.root_separator as f64;
+        s * (s + 1.0) * (2.0 * s + 1.0) / 6.0
+    }
+}
+
+/// The nested-dissection order of the free unknowns.
+pub fn nested_dissection(x: &[[f64; 3]], dofs: &DofMap, pattern: &Pattern) -> Dissection {
     let n = x.len();
     let mut points: Vec<u32> = (0..n as u32)
         .filter(|&i| dofs.free_count(i as usize) > 0)
         .collect();
     let mut side = vec![0u8; n];
     let mut order = Vec::with_capacity(points.len());
-    dissect(&mut points, x, dofs.d, pattern, &mut side, &mut order);
+    let root = dissect(&mut points, x, dofs.d, pattern, &mut side, &mut order);
+    let root_separator = order[order.len() - root..]
+        .iter()
+        .map(|&i| dofs.free_count(i as usize))
+        .sum();
     let mut dof_order = Vec::with_capacity(dofs.n_free());
     for &i in &order {
         for c in 0..dofs.d {
@@ -56,10 +78,14 @@ pub fn nested_dissection(x: &[[f64; 3]], dofs: &DofMap, pattern: &Pattern) -> Ve
             }
         }
     }
-    dof_order
+    Dissection {
+        order: dof_order,
+        root_separator,
+    }
 }
 
-/// Orders `set` into `out` (module docs). `side` is zero on entry and exit.
+/// Orders `set` into `out` (module docs) and returns the number of points of
+/// its separator (0 for a leaf). `side` is zero on entry and exit.
 fn dissect(
     set: &mut [u32],
     x: &[[f64; 3]],
@@ -67,11 +93,11 @@ fn dissect(
     pattern: &Pattern,
     side: &mut [u8],
     out: &mut Vec<u32>,
-) {
+) -> usize {
     if set.len() <= LEAF {
         set.sort_unstable();
         out.extend_from_slice(set);
-        return;
+        return 0;
     }
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for &p in set.iter() {
@@ -86,7 +112,7 @@ fn dissect(
     if hi[axis] <= lo[axis] {
         set.sort_unstable();
         out.extend_from_slice(set);
-        return;
+        return 0;
     }
     // Cut at the median, moved to the nearest gap between distinct coordinates
     // so that a grid column is never split (it would widen the separator).
@@ -119,4 +145,5 @@ fn dissect(
     dissect(rest, x, d, pattern, side, out);
     separator.sort_unstable();
     out.extend_from_slice(separator);
+    separator.len()
 }

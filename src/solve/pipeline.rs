@@ -42,7 +42,7 @@
 use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
 use super::low_rank::{LowRank, Term};
-use super::ordering::{nested_dissection, Ordering};
+use super::ordering::{nested_dissection, Dissection, Ordering};
 use super::two_level::TwoLevel;
 use super::{
     check_memory, refine, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
@@ -262,6 +262,7 @@ fn analyse_cholesky(
     disc: &Discretization,
     dofs: &DofMap,
     ordering: Ordering,
+    dissection: Option<Dissection>,
 ) -> Result<(Cholesky, OrderingReport), Error> {
     let mut report = OrderingReport {
         chosen: ordering,
@@ -285,7 +286,10 @@ fn analyse_cholesky(
     let nd = match ordering {
         Ordering::NestedDissection | Ordering::Auto => {
             let t = Instant::now();
-            let order = nested_dissection(&disc.points.x, dofs, pattern);
+            let order = match dissection {
+                Some(done) => done.order,
+                None => nested_dissection(&disc.points.x, dofs, pattern).order,
+            };
             report.dissection_seconds = t.elapsed().as_secs_f64();
             let chol = Cholesky::analyse(pattern.symbolic(), Some(&order))?;
             report.nnz_l_nested_dissection = Some(chol.nnz_l());
@@ -496,14 +500,41 @@ impl Pipeline {
                 Factor::Lu(SparseLu::analyse(pattern.symbolic())?),
             ),
             SolverMethod::Iterative => iterative,
-            SolverMethod::Cholesky | SolverMethod::Gmres => {
+            SolverMethod::Cholesky | SolverMethod::Gmres => 'route: {
                 let (source, structure) = match (&surrogate, settings.method) {
                     (Some(s), _) => (Source::Surrogate, &s.pattern),
                     (None, SolverMethod::Gmres) => (Source::SymmetricPart, &pattern),
                     _ => (Source::Matrix, &pattern),
                 };
+                // Where nested dissection is the only candidate, its root
+                // separator bounds the factor's cost from below: past the
+                // threshold the symbolic analysis is not worth running.
+                let nd_only = settings.ordering == Ordering::NestedDissection
+                    || (settings.ordering == Ordering::Auto
+                        && structure.nnz() > AUTO_AMD_UP_TO_NNZ_K);
+                let dissection =
+                    nd_only.then(|| nested_dissection(&disc.points.x, dofs, structure));
+                let per_entry_bound = dissection
+                    .as_ref()
+                    .map_or(0.0, |d| d.root_flops() / pattern.nnz().max(1) as f64);
+                if settings.automatic
+                    && !settings.fracture
+                    && !settings.near_incompressible
+                    && per_entry_bound > ITERATIVE_FROM_FLOPS_PER_ENTRY
+                {
+                    eprintln!(
+                        "note: the root separator of a nested-dissection factor ({} unknowns, a \
+                         dense block) alone would cost {:.1e} operations ({per_entry_bound:.1e} \
+                         per entry of K); solving iteratively instead (set solver.method to \
+                         factorise)",
+                        dissection.as_ref().map_or(0, |d| d.root_separator),
+                        dissection.as_ref().map_or(0.0, Dissection::root_flops),
+                    );
+                    surrogate = None;
+                    break 'route iterative;
+                }
                 let (mut chol, report) =
-                    analyse_cholesky(structure, disc, dofs, settings.ordering)?;
+                    analyse_cholesky(structure, disc, dofs, settings.ordering, dissection)?;
                 let per_entry = chol.flops() / pattern.nnz().max(1) as f64;
                 match choose_precision(&mut chol, structure.nnz(), &settings) {
                     Ok(())
@@ -697,7 +728,7 @@ impl Pipeline {
     ) -> Result<(), Error> {
         if self.source == Source::Surrogate {
             let (mut chol, report) =
-                analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering)?;
+                analyse_cholesky(&self.pattern, disc, dofs, self.settings.ordering, None)?;
             self.ordering = Some(report);
             choose_precision(&mut chol, self.pattern.nnz(), &self.settings)?;
             let full = k.symmetric_part(self.transpose());
