@@ -781,24 +781,30 @@ impl Pipeline {
         let mut x = vec![0.0; rhs.len()];
         let mut report = None;
         let (residual, refinement_steps);
-        if self.source == Source::Matrix && self.factor.is_single() {
-            // Mixed precision: CG on K preconditioned by the single-precision
-            // factor, to the residual the direct routes reach.
-            let apply = |v: &[f64]| self.product(k, v);
-            let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
-            let cg = pcg(
-                &apply,
-                &precondition,
-                rhs,
-                &mut x,
-                GMRES_TOLERANCE,
-                MIXED_ITERATIONS,
-            );
+        // Mixed precision: CG on K preconditioned by the single-precision
+        // factor, to the residual the direct routes reach; None when there is
+        // no single-precision factor or it was not good enough (then the
+        // matrix is factorised again in double precision).
+        let mixed = if self.source == Source::Matrix && self.factor.is_single() {
+            let cg = {
+                let apply = |v: &[f64]| self.product(k, v);
+                let precondition = |v: &mut [f64]| self.factor.solve_in_place(v);
+                pcg(
+                    &apply,
+                    &precondition,
+                    rhs,
+                    &mut x,
+                    GMRES_TOLERANCE,
+                    MIXED_ITERATIONS,
+                )
+            };
             // Large systems stop at the round-off floor of their products
             // (2e-12 at a million points), which the direct route would accept
             // after refinement too; anything higher means the single-precision
             // factor is not good enough.
-            if !(cg.relative_residual <= MIXED_ACCEPT) {
+            if cg.relative_residual <= MIXED_ACCEPT {
+                Some(cg)
+            } else {
                 eprintln!(
                     "note: CG with the single-precision factor reached {:.1e} after {} \
                      iterations (the matrix is too ill-conditioned for single precision); \
@@ -807,16 +813,15 @@ impl Pipeline {
                 );
                 self.use_double_precision()?;
                 self.factorize(disc, dofs, k)?;
-                x.copy_from_slice(rhs);
-                self.factor.solve_in_place(&mut x);
-                let apply = |v: &[f64]| self.product(k, v);
-                let solve = |v: &mut [f64]| self.factor.solve_in_place(v);
-                (residual, refinement_steps) = refine(&apply, &solve, rhs, &mut x);
-            } else {
-                residual = cg.relative_residual;
-                refinement_steps = 0;
-                report = Some(cg);
+                None
             }
+        } else {
+            None
+        };
+        if let Some(cg) = mixed {
+            residual = cg.relative_residual;
+            refinement_steps = 0;
+            report = Some(cg);
             self.costs.fresh_iterations = 0;
         } else if self.source == Source::Matrix {
             x.copy_from_slice(rhs);

@@ -217,7 +217,6 @@ impl TwoLevel {
 
     /// `Pᵀ r`, by aggregate.
     fn restrict(&self, r: &[f64]) -> Vec<f64> {
-        let n_aggregates = self.coarse_offsets.len() - 1;
         let mut out = vec![0.0; self.coarse_size()];
         let parts: Vec<&mut [f64]> =
             super::super::assembly::split_at_offsets(&mut out, &self.coarse_offsets);
@@ -229,7 +228,6 @@ impl TwoLevel {
                 }
             }
         });
-        debug_assert_eq!(n_aggregates + 1, self.coarse_offsets.len());
         out
     }
 
