@@ -30,17 +30,23 @@ use std::time::Instant;
 
 const RESULTS: &str = "validation/fracture/results";
 
-/// The LEFM critical load of the SENT plate (FEM, clamped grips, a/W = 0.5).
-fn lefm_peak() -> f64 {
-    let text = std::fs::read_to_string("validation/fracture/fem/reference_sent.json")
+/// The LEFM critical load (FEM, clamped grips) of a specimen: the SENT plate with
+/// an edge notch `a`, or the centre-cracked panel with half-length `c`
+/// (`fem/reference_sent.json`, `fem/reference_cct.json`).
+fn lefm_peak(case: &Sent) -> f64 {
+    let (file, material, a) = match case.centre_crack {
+        Some(c) => ("reference_cct.json", "plane_stress_nu_1/3", c),
+        None => ("reference_sent.json", "plane_stress_nu_1/3", case.notch),
+    };
+    let text = std::fs::read_to_string(format!("validation/fracture/fem/{file}"))
         .expect("run from the repository root");
     let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
-    let case = &json["materials"]["plane_stress_nu_1/3"];
-    let a = case["a_over_W"].as_array().expect("a_over_W");
-    let k = a
+    let case = json["materials"].get(material).unwrap_or(&json);
+    let a_over_w = case["a_over_W"].as_array().expect("a_over_W");
+    let k = a_over_w
         .iter()
-        .position(|v| (v.as_f64().unwrap() - 0.5).abs() < 1e-12)
-        .expect("a/W = 0.5");
+        .position(|v| (v.as_f64().unwrap() - a / WIDTH).abs() < 1e-9)
+        .expect("the crack length is in the FEM sweep");
     case["P_c"][k].as_f64().expect("P_c")
 }
 
@@ -78,10 +84,12 @@ fn run(case: &Sent) -> Outcome {
         .iter()
         .map(|r| r.reactions[top][axis].abs())
         .fold(0.0, f64::max);
+    // The load at which the first bond reaches its critical value: the first
+    // critical state (event strategy), else the first step that broke a bond.
     let first_break = solution
         .records
         .iter()
-        .find(|r| r.broken_total > 0)
+        .find(|r| r.state == quasi_static::StateKind::Critical || r.broken_total > 0)
         .map_or(f64::NAN, |r| r.reactions[top][axis].abs());
     std::fs::create_dir_all(RESULTS).expect("results directory");
     let curve = Path::new(RESULTS).join(format!("curve_{}.csv", case.name()));
@@ -127,50 +135,95 @@ fn write(name: &str, text: &str) {
     println!("wrote {}", path.display());
 }
 
-/// Peak load against LEFM for δ/a ≈ 0.2, 0.1, 0.05 and m = 3, 4.
-fn lefm(model: &'static str, quick: bool) {
-    let reference = lefm_peak();
-    println!("LEFM (FEM, clamped grips, a/W = 0.5): P_c = {reference:.6e} N/m");
-    let mut csv = String::from(
-        "model,cells,m,delta_over_a,points,peak,lefm,error,first_break,fresh,reuse,seconds\n",
-    );
-    let grid: &[(usize, f64)] = match (model, quick) {
-        (_, true) => &[(30, 3.015), (40, 4.015)],
-        ("shear", false) => &[(30, 3.015), (40, 4.015), (60, 3.015)],
-        _ => &[
-            (30, 3.015),
-            (40, 4.015),
-            (60, 3.015),
-            (80, 4.015),
-            (120, 3.015),
-            (160, 4.015),
-        ],
+/// The specimens of the peak-load study: SENT with a/W = 0.5 and 0.3 and the
+/// centre-cracked panel with c/W = 0.2, each at horizon factor `m` with spacings
+/// giving δ/a ≈ 0.2, 0.1 (and 0.05 for the SENT a/W = 0.5).
+fn specimens(model: &'static str, quick: bool) -> Vec<Sent> {
+    let mut cases = Vec::new();
+    let sweep: &[(Option<f64>, f64, &[(usize, f64)])] = if quick {
+        &[(None, NOTCH, &[(30, 3.015), (40, 4.015)])]
+    } else if model == "shear" {
+        &[
+            (None, NOTCH, &[(30, 3.015), (40, 4.015), (60, 3.015)]),
+            (None, 0.03, &[(50, 3.015)]),
+            (Some(0.02), 0.02, &[(75, 3.015)]),
+        ]
+    } else {
+        &[
+            (
+                None,
+                NOTCH,
+                &[
+                    (30, 3.015),
+                    (40, 4.015),
+                    (60, 3.015),
+                    (80, 4.015),
+                    (120, 3.015),
+                    (160, 4.015),
+                ],
+            ),
+            (
+                None,
+                0.03,
+                &[(50, 3.015), (67, 4.015), (100, 3.015), (134, 4.015)],
+            ),
+            (Some(0.02), 0.02, &[(75, 3.015), (100, 4.015), (150, 3.015)]),
+        ]
     };
-    for &(cells, m) in grid {
-        let mut case = Sent::new(model, cells, m);
-        case.stop_after_peak = Some(0.7);
-        let o = run(&case);
-        let (fresh, reuse) = solves(&o.solution);
-        let delta_a = case.horizon() / NOTCH;
-        println!(
-            "{model} W/Δx = {cells}, m = {m}, δ/a = {delta_a:.3}: {} points, peak {:.4e} N/m ({:+.1} %), first break at {:.3e}, {fresh} + {reuse} solves, {:.1} s",
-            o.points,
-            o.peak,
-            100.0 * (o.peak / reference - 1.0),
-            o.first_break,
-            o.seconds
-        );
-        let _ = writeln!(
-            csv,
-            "{model},{cells},{m},{delta_a:.4},{},{:.6e},{reference:.6e},{:.5},{:.6e},{fresh},{reuse},{:.2}",
-            o.points,
-            o.peak,
-            o.peak / reference - 1.0,
-            o.first_break,
-            o.seconds
-        );
+    for &(centre, notch, grid) in sweep {
+        for &(cells, m) in grid {
+            let mut case = Sent::new(model, cells, m);
+            case.notch = notch;
+            case.centre_crack = centre;
+            case.stop_after_peak = Some(0.7);
+            cases.push(case);
+        }
     }
-    write(&format!("lefm_{model}.csv"), &csv);
+    cases
+}
+
+/// Peak load against LEFM on every specimen, with both calibrations.
+fn lefm(model: &'static str, quick: bool) {
+    let mut csv = String::from(
+        "model,specimen,calibration,cells,m,delta_over_a,points,peak,lefm,error,first_break,fresh,reuse,seconds\n",
+    );
+    for base in specimens(model, quick) {
+        for calibration in ["dissipation", "continuum"] {
+            let mut case = base.clone();
+            case.calibration = calibration;
+            let reference = lefm_peak(&case);
+            let o = run(&case);
+            let (fresh, reuse) = solves(&o.solution);
+            let crack = case.centre_crack.unwrap_or(case.notch);
+            let delta_a = case.horizon() / crack;
+            let specimen = match case.centre_crack {
+                Some(c) => format!("cct_c{:.0}mm", 1e3 * c),
+                None => format!("sent_a{:.0}mm", 1e3 * case.notch),
+            };
+            println!(
+                "{model} {specimen} {calibration} W/Δx = {}, m = {}, δ/a = {delta_a:.3}: {} points, peak {:.4e} N/m vs LEFM {reference:.4e} ({:+.1} %), first break at {:.3e}, {fresh} + {reuse} solves, {:.1} s",
+                case.cells,
+                case.horizon_factor,
+                o.points,
+                o.peak,
+                100.0 * (o.peak / reference - 1.0),
+                o.first_break,
+                o.seconds
+            );
+            let _ = writeln!(
+                csv,
+                "{model},{specimen},{calibration},{},{},{delta_a:.4},{},{:.6e},{reference:.6e},{:.5},{:.6e},{fresh},{reuse},{:.2}",
+                case.cells,
+                case.horizon_factor,
+                o.points,
+                o.peak,
+                o.peak / reference - 1.0,
+                o.first_break,
+                o.seconds
+            );
+            write(&format!("lefm_{model}.csv"), &csv);
+        }
+    }
 }
 
 /// Full separation: work of the grip against `G₀ × ligament`, with the energy
@@ -269,7 +322,7 @@ fn bond_energies(case: &Sent, s: &QuasiStaticSolution) -> (f64, f64, f64) {
 /// elsewhere, against the uniform fine and coarse plates and the
 /// constant-horizon baseline on the same points.
 fn band(quick: bool) {
-    let reference = lefm_peak();
+    let reference = lefm_peak(&Sent::new("bond_based", 40, 3.015));
     let (cells, m) = if quick { (40, 3.015) } else { (80, 3.015) };
     let fine = Sent::new("bond_based", cells, m);
     let half = |cells_band: usize| cells_band as f64 * 2.0 * fine.spacing();
@@ -338,7 +391,7 @@ fn crack_deviation(s: &QuasiStaticSolution, x_tip: f64, y0: f64) -> f64 {
 
 /// The three strategies on one plate: curves, peaks, solves and times.
 fn strategies(quick: bool) {
-    let reference = lefm_peak();
+    let reference = lefm_peak(&Sent::new("bond_based", 40, 3.015));
     let cells = if quick { 30 } else { 40 };
     let mut csv =
         String::from("strategy,steps,peak,error,records,fresh,reuse,bonds,seconds,curve\n");

@@ -43,7 +43,12 @@
 use crate::discretization::Discretization;
 use crate::model::bond_based;
 use crate::model::Model;
-use crate::scene::{Dimension, EnergyCounting, FractureParameter, ModelKind, Scene};
+use crate::scene::{
+    Calibration, Dimension, EnergyCounting, FractureParameter, ModelKind, Scene, ShearCriterion,
+};
+use calibration::Uncalibrated;
+
+pub mod calibration;
 use rayon::prelude::*;
 use std::f64::consts::PI;
 
@@ -56,6 +61,8 @@ pub struct Criterion {
     protected: Vec<bool>,
     /// The shear model's tension check (`θ_i ≥ 0 or θ_j ≥ 0`).
     tension_check: bool,
+    /// Shear model, energy criterion: `(K/2, d μ)` of every owner.
+    energy_moduli: Option<Vec<(f64, f64)>>,
 }
 
 /// Critical stretch of a bond-based owner from `G₀` and the pair micromodulus
@@ -88,58 +95,179 @@ pub fn critical_deviatoric_strain(
     }
 }
 
+/// Which calibration each group of owners received (`summary.json`).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct CalibrationReport {
+    /// `fracture.calibration`.
+    pub calibration: Calibration,
+    /// Owners with a fracture energy, grouped by material, horizon factor and factor.
+    pub groups: Vec<CalibratedGroup>,
+}
+
+/// Owners of one material and horizon factor with the same calibration.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct CalibratedGroup {
+    /// Material name.
+    pub material: String,
+    /// `m = δ/Δx`.
+    pub horizon_factor: f64,
+    /// The dissipation factor `D` applied (critical value / sqrt(D)); `None`: the continuum value.
+    pub dissipation_factor: Option<f64>,
+    /// Why no factor applies under the dissipation calibration.
+    pub continuum_because: Option<&'static str>,
+    /// Number of owners.
+    pub points: usize,
+}
+
+impl CalibrationReport {
+    /// One line per group that keeps the continuum value under the dissipation
+    /// calibration (for the run's notes).
+    pub fn notes(&self) -> Vec<String> {
+        self.groups
+            .iter()
+            .filter_map(|g| {
+                g.continuum_because.map(|why| {
+                    format!(
+                        "fracture.calibration = \"dissipation\": {} points of material \"{}\" \
+                         (m = {:.3}) keep the continuum critical value: {why}",
+                        g.points, g.material, g.horizon_factor
+                    )
+                })
+            })
+            .collect()
+    }
+
+    fn add(&mut self, material: &str, m: f64, factor: Result<Option<f64>, Uncalibrated>) {
+        let (dissipation_factor, continuum_because) = match factor {
+            Ok(f) => (f, None),
+            Err(why) => (None, Some(why.explain())),
+        };
+        let same = |g: &&mut CalibratedGroup| {
+            g.material == material
+                && (g.horizon_factor - m).abs() <= 1e-9 * m
+                && g.dissipation_factor == dissipation_factor
+                && g.continuum_because == continuum_because
+        };
+        match self.groups.iter_mut().find(same) {
+            Some(g) => g.points += 1,
+            None => self.groups.push(CalibratedGroup {
+                material: material.to_string(),
+                horizon_factor: m,
+                dissipation_factor,
+                continuum_because,
+                points: 1,
+            }),
+        }
+    }
+}
+
+/// The papers' critical value of owner `i` for fracture energy `g0` (module docs).
+fn continuum_critical_value(scene: &Scene, disc: &Discretization, i: usize, g0: f64) -> f64 {
+    let p = &disc.points;
+    let material = &scene.materials[p.material[i] as usize];
+    let horizon = p.horizon[i];
+    match scene.model {
+        ModelKind::BondBased => {
+            // C per volume² including thickness/area; per unit thickness × t.
+            let per_unit = if scene.dimension == Dimension::Three {
+                1.0
+            } else {
+                scene.thickness
+            };
+            let c = 2.0
+                * bond_based::micromodulus(scene.dimension, material, horizon, scene.thickness)
+                * per_unit;
+            critical_stretch(disc.d, c, horizon, g0)
+        }
+        ModelKind::Shear => {
+            let (_, mu) = crate::model::shear::moduli(scene.dimension, material);
+            critical_deviatoric_strain(disc.d, mu, horizon, g0, scene.fracture.shear_energy)
+        }
+    }
+}
+
+/// The dissipation factor of owner `i` with horizon factor `m` ([`calibration`]).
+fn dissipation_factor(
+    scene: &Scene,
+    disc: &Discretization,
+    i: usize,
+    m: f64,
+) -> Result<f64, Uncalibrated> {
+    if disc.points.from_mesh[i] {
+        return Err(Uncalibrated::Irregular);
+    }
+    match scene.model {
+        ModelKind::BondBased => {
+            calibration::bond_based_factor(scene.dimension, scene.volume_correction, m)
+        }
+        ModelKind::Shear => Err(Uncalibrated::Model),
+    }
+}
+
 impl Criterion {
     /// Every owner's critical value from its material and horizon, and the no-fail zones.
     pub fn new(scene: &Scene, disc: &Discretization) -> Self {
+        Self::with_report(scene, disc).0
+    }
+
+    /// [`Criterion::new`], and which calibration every owner with a fracture energy received.
+    pub fn with_report(scene: &Scene, disc: &Discretization) -> (Self, CalibrationReport) {
         let p = &disc.points;
-        let d = disc.d;
+        let calibration = scene.fracture.calibration;
+        let mut report = CalibrationReport {
+            calibration,
+            groups: Vec::new(),
+        };
+        let energy_moduli = (scene.model == ModelKind::Shear
+            && scene.fracture.shear_criterion == ShearCriterion::Energy)
+            .then(|| {
+                (0..p.len())
+                    .map(|i| {
+                        let material = &scene.materials[p.material[i] as usize];
+                        let (kappa, mu) = crate::model::shear::moduli(scene.dimension, material);
+                        (0.5 * kappa, disc.d as f64 * mu)
+                    })
+                    .collect::<Vec<_>>()
+            });
         let critical = (0..p.len())
             .map(|i| {
                 let material = &scene.materials[p.material[i] as usize];
-                let horizon = p.horizon[i];
-                match material.fracture {
-                    None => f64::INFINITY,
-                    Some(FractureParameter::CriticalStretch(s0)) => s0,
-                    Some(FractureParameter::CriticalDeviatoricStrain(e)) => e,
-                    Some(FractureParameter::Energy(g0)) => match scene.model {
-                        ModelKind::BondBased => {
-                            // C per volume² including thickness/area; per unit thickness × t.
-                            let c =
-                                2.0 * bond_based::micromodulus(
-                                    scene.dimension,
-                                    material,
-                                    horizon,
-                                    scene.thickness,
-                                ) * if scene.dimension == Dimension::Three {
-                                    1.0
-                                } else {
-                                    scene.thickness
-                                };
-                            critical_stretch(d, c, horizon, g0)
+                // The energy criterion's critical value from ε^d_max: sqrt(d μ) ε^d_max.
+                let scale = energy_moduli.as_ref().map_or(1.0, |e| e[i].1.sqrt());
+                scale
+                    * match material.fracture {
+                        None => f64::INFINITY,
+                        Some(FractureParameter::CriticalStretch(s0)) => s0,
+                        Some(FractureParameter::CriticalDeviatoricStrain(e)) => e,
+                        Some(FractureParameter::Energy(g0)) => {
+                            let continuum = continuum_critical_value(scene, disc, i, g0);
+                            let m = p.horizon[i] / p.spacing[i];
+                            let factor = match calibration {
+                                Calibration::Continuum => Ok(None),
+                                Calibration::Dissipation => {
+                                    dissipation_factor(scene, disc, i, m).map(Some)
+                                }
+                            };
+                            report.add(&material.name, m, factor);
+                            match factor {
+                                Ok(Some(d)) => continuum / d.sqrt(),
+                                _ => continuum,
+                            }
                         }
-                        ModelKind::Shear => {
-                            let (_, mu) = crate::model::shear::moduli(scene.dimension, material);
-                            critical_deviatoric_strain(
-                                d,
-                                mu,
-                                horizon,
-                                g0,
-                                scene.fracture.shear_energy,
-                            )
-                        }
-                    },
-                }
+                    }
             })
             .collect();
         let protected =
             p.x.iter()
                 .map(|x| scene.fracture.no_fail.iter().any(|b| b.contains(x)))
                 .collect();
-        Criterion {
+        let criterion = Criterion {
             critical,
             protected,
             tension_check: scene.model == ModelKind::Shear,
-        }
+            energy_moduli,
+        };
+        (criterion, report)
     }
 
     /// The critical value of owner `i`'s bonds.
@@ -198,8 +326,15 @@ impl Criterion {
                         && (!self.tension_check
                             || dilatation[i].is_some_and(|t| t >= 0.0)
                             || dilatation[j].is_some_and(|t| t >= 0.0));
+                    let value = match (&self.energy_moduli, dilatation[i]) {
+                        (Some(e), Some(theta)) => {
+                            let (half_kappa, d_mu) = e[i];
+                            (half_kappa * theta * theta + d_mu * *slot * *slot).sqrt()
+                        }
+                        _ => *slot,
+                    };
                     *slot = if eligible {
-                        (*slot / critical).max(0.0)
+                        (value / critical).max(0.0)
                     } else {
                         0.0
                     };

@@ -16,7 +16,7 @@ mod neighbours;
 pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
-use crate::geometry::grid::{self, RawPoint};
+use crate::geometry::grid::{self, RawPoint, Source};
 use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::{norm, point_file, sub};
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
@@ -36,6 +36,8 @@ pub struct Points {
     pub horizon: Vec<f64>,
     /// Material index into the scene's materials.
     pub material: Vec<u32>,
+    /// Whether the point is an element of a Gmsh mesh (an irregular cloud).
+    pub from_mesh: Vec<bool>,
 }
 
 impl Points {
@@ -56,6 +58,10 @@ impl Points {
             spacing: raw.iter().map(|p| p.spacing).collect(),
             horizon: raw.iter().map(|p| p.horizon).collect(),
             material: raw.iter().map(|p| p.material).collect(),
+            from_mesh: raw
+                .iter()
+                .map(|p| matches!(p.source, Source::Mesh { .. }))
+                .collect(),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! `summary.json`: counts, wall time per phase, residual, reactions and loads.
 
 use crate::assembly::loads::AppliedLoad;
+use crate::damage::CalibrationReport;
 use crate::drivers::quasi_static::{Outcome, QuasiStaticSolution, ResolveRecord, StepRecord};
 use crate::drivers::static_solve::{Counts, Reaction, StaticSolution, Timings};
 use crate::error::{Error, NumericalError};
@@ -154,6 +155,8 @@ pub struct QuasiStaticSummary<'a> {
     pub fresh_factorisations: RouteStats,
     /// Solves reusing the previous factor.
     pub reuses: RouteStats,
+    /// How `fracture_energy` became every owner's critical value.
+    pub fracture_calibration: &'a CalibrationReport,
     /// What breaking did to the system.
     pub log: &'a [String],
     /// Applied loads at load factor 1.
@@ -222,6 +225,7 @@ pub fn write_quasi_static(
         peaks,
         fresh_factorisations: RouteStats::of(&route(Route::Factor)),
         reuses: RouteStats::of(&route(Route::Reuse)),
+        fracture_calibration: &s.calibration,
         log: &s.log,
         loads: &s.loads,
         steps: &s.records,

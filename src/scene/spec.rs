@@ -621,6 +621,18 @@ pub struct FractureSpec {
     /// `"one_bond"` is 001 Eq. 40 as printed.
     #[serde(default)]
     pub shear_energy: EnergyCounting,
+    /// How `fracture_energy` becomes a critical value: `"dissipation"` (default)
+    /// makes steady crack growth on the scene's own lattice dissipate G₀ per unit
+    /// crack area; `"continuum"` is the papers' formula (the crossing bonds of a
+    /// continuum hold G₀). See `damage::calibration`.
+    #[serde(default)]
+    pub calibration: Calibration,
+    /// Shear model: which bond quantity reaches its critical value. `"energy"`
+    /// (default): the bond's energy density, deviatoric plus its share of the
+    /// volumetric part; `"deviatoric"`: the deviatoric bond strain of 001 Eq. 37.
+    /// Both keep the tension check of 001 Eq. 37.
+    #[serde(default)]
+    pub shear_criterion: ShearCriterion,
     /// Boxes in which no bond breaks (a bond with either end inside is kept).
     #[serde(default)]
     pub no_fail: Vec<NoFailSpec>,
@@ -635,6 +647,29 @@ pub enum EnergyCounting {
     Pair,
     /// One bond per pair, as 001 Eq. 39-40 count it.
     OneBond,
+}
+
+/// The shear model's bond breakage criterion (`damage` module docs).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShearCriterion {
+    /// `K θ_i²/2 + d μ (ε^d)²` reaches its critical value.
+    #[default]
+    Energy,
+    /// `|ε^d|` reaches `ε^d_max` (001 Eq. 37).
+    Deviatoric,
+}
+
+/// How a fracture energy becomes each owner's critical value (`damage::calibration`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Calibration {
+    /// The continuum formula divided by `sqrt(D)`, `D` the measured dissipation
+    /// factor of the owner's lattice: crack growth dissipates G₀ per unit area.
+    #[default]
+    Dissipation,
+    /// The continuum formula of the papers (000 Eq. 12, 001 Eq. 40).
+    Continuum,
 }
 
 /// `[[fracture.no_fail]]`: a box where bonds never break.

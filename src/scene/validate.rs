@@ -60,6 +60,10 @@ pub enum FractureParameter {
 pub struct FractureSettings {
     /// Shear model: energy counting of `fracture_energy`.
     pub shear_energy: EnergyCounting,
+    /// How `fracture_energy` becomes a critical value.
+    pub calibration: Calibration,
+    /// Shear model: the breakage criterion.
+    pub shear_criterion: ShearCriterion,
     /// Boxes where no bond breaks.
     pub no_fail: Vec<Aabb>,
 }
@@ -910,6 +914,8 @@ fn fracture_runs(
     let mut fracture = FractureSettings::default();
     if let Some(f) = &spec.fracture {
         fracture.shear_energy = f.shear_energy;
+        fracture.calibration = f.calibration;
+        fracture.shear_criterion = f.shear_criterion;
         for (k, b) in f.no_fail.iter().enumerate() {
             fracture
                 .no_fail

@@ -12,9 +12,13 @@
 //! `E = 30 GPa`, `ν = 1/3`, `G₀ = 200 J/m²`. The finite-element reference for
 //! this exact geometry and these grips is in `validation/fracture/fem`.
 
+use crate::drivers::quasi_static::{self, Observer, Snapshot, StateKind, StepRecord};
+use crate::drivers::static_solve;
+use crate::error::Error;
 use crate::scene::{parse_spec, Scene};
 use std::fmt::Write;
 use std::path::Path;
+use std::time::Instant;
 
 /// Plate width `W` (m).
 pub const WIDTH: f64 = 0.1;
@@ -70,6 +74,13 @@ pub struct Sent {
     /// Instead of the edge notch, a centre crack through `(W/2, 0)` at 45° to
     /// `x`, half-length [`INCLINED_HALF_LENGTH`] (mixed mode under tension).
     pub inclined: bool,
+    /// Edge notch length `a` (m; [`NOTCH`] by default).
+    pub notch: f64,
+    /// Instead of the edge notch, a straight centre crack on `y = 0` from
+    /// `W/2 − c` to `W/2 + c` with this half-length `c` (centre-cracked tension).
+    pub centre_crack: Option<f64>,
+    /// `fracture.calibration` (`"dissipation"`, the default, or `"continuum"`).
+    pub calibration: &'static str,
 }
 
 /// Half-length of the inclined centre crack (m).
@@ -98,6 +109,9 @@ impl Sent {
             max_load_factor: 1.0,
             depth: None,
             inclined: false,
+            notch: NOTCH,
+            centre_crack: None,
+            calibration: "dissipation",
         }
     }
 
@@ -132,6 +146,14 @@ impl Sent {
         if self.inclined {
             name.push_str("_inclined");
         }
+        if let Some(c) = self.centre_crack {
+            let _ = write!(name, "_centre{:.0}mm", 1e3 * c);
+        } else if self.notch != NOTCH {
+            let _ = write!(name, "_notch{:.0}mm", 1e3 * self.notch);
+        }
+        if self.calibration != "dissipation" {
+            let _ = write!(name, "_{}", self.calibration);
+        }
         if self.depth.is_some() {
             name.push_str("_3d");
         }
@@ -161,10 +183,15 @@ impl Sent {
         let _ = writeln!(
             t,
             "# SENT plate (validation/fracture): W = {WIDTH} m, free length L = {LENGTH} m between \
-             clamped grips,\n# edge notch a = {NOTCH} m along y = 0; {setting}; spacing W/{}, m = {}.\n\
+             clamped grips,\n# {}; {setting}; spacing W/{}, m = {}.\n\
              name = \"{}\"\n\n[model]\ndimension = \"{dimension}\"\nkind = \"{}\"\n\
              horizons = \"{}\"\n\n[discretization]\nhorizon_factor = {}\n\n\
              [materials.plate]\nyoungs_modulus = {YOUNGS_MODULUS:e}\n{}fracture_energy = {FRACTURE_ENERGY}\n",
+            match (self.centre_crack, self.inclined) {
+                (Some(c), _) => format!("centre crack of half-length {c} m along y = 0"),
+                (None, true) => String::from("inclined centre crack"),
+                (None, false) => format!("edge notch a = {} m along y = 0", self.notch),
+            },
             self.cells,
             self.horizon_factor,
             self.name(),
@@ -198,15 +225,21 @@ impl Sent {
         };
         let guard = 0.5 * LENGTH - 0.1 * WIDTH;
         let [upper, lower] = inclined_tips();
-        let crack = match (self.depth, self.inclined) {
-            (Some(z), _) => format!(
-                "origin = [0.0, 0.0, 0.0]\nedge1 = [{NOTCH}, 0.0, 0.0]\nedge2 = [0.0, 0.0, {z:e}]"
+        let crack = match (self.depth, self.inclined, self.centre_crack) {
+            (Some(z), _, _) => format!(
+                "origin = [0.0, 0.0, 0.0]\nedge1 = [{:e}, 0.0, 0.0]\nedge2 = [0.0, 0.0, {z:e}]",
+                self.notch
             ),
-            (None, true) => format!(
+            (None, _, Some(c)) => format!(
+                "from = [{:e}, 0.0]\nto = [{:e}, 0.0]",
+                0.5 * WIDTH - c,
+                0.5 * WIDTH + c
+            ),
+            (None, true, None) => format!(
                 "from = [{:e}, {:e}]\nto = [{:e}, {:e}]",
                 lower[0], lower[1], upper[0], upper[1]
             ),
-            (None, false) => format!("from = [0.0, 0.0]\nto = [{NOTCH}, 0.0]"),
+            (None, false, None) => format!("from = [0.0, 0.0]\nto = [{:e}, 0.0]", self.notch),
         };
         let held = if self.depth.is_some() {
             "x = 0.0, y = 0.0, z = 0.0"
@@ -222,10 +255,11 @@ impl Sent {
             "[[cracks]]\n{crack}\n\n\
              [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ {held} }}\n\n\
              [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ {pulled} }}\n\n\
-             [fracture]\nno_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
+             [fracture]\ncalibration = \"{}\"\nno_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
              [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = {}",
             slab(bottom, -0.5 * LENGTH),
             slab(0.5 * LENGTH, top),
+            self.calibration,
             slab(bottom, -guard),
             slab(guard, top),
             self.strategy,
@@ -247,5 +281,379 @@ impl Sent {
     pub fn scene(&self) -> Scene {
         let spec = parse_spec(&self.toml(), false).expect("the SENT scene parses");
         Scene::try_from_spec(spec, Path::new("."), "sent").expect("the SENT scene is valid")
+    }
+}
+
+/// **The calibration strip** (`damage::calibration`, `examples/fracture_calibration.rs`):
+/// a long strip `x ∈ [0, length]`, free height `H` between clamped grips at
+/// `y = ±H/2`, pre-cracked along `y = 0` from the edge `x = 0` to `x = notch`. The
+/// top grip moves along `y` (mode I) or `x` (mode II), the crack grows along `y = 0`
+/// to the far edge, and the energy each event releases is booked at the midpoints
+/// of the bonds it broke: away from the notch and the far edge this is the energy
+/// the lattice dissipates per unit area of steady crack growth, `D G₀`.
+///
+/// The lattice is the scene's regular grid (`angle = 0`) or a square lattice of the
+/// same spacing rotated by `angle` degrees, written as a point file, to measure `D`
+/// for cracks that do not run along a grid line. Sizes are in spacings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Strip {
+    /// `"bond_based"` or `"shear"`.
+    pub model: &'static str,
+    /// `m = δ/Δx`.
+    pub horizon_factor: f64,
+    /// Rotation of the lattice against the crack, degrees.
+    pub angle: f64,
+    /// `discretization.volume_correction`.
+    pub volume_correction: &'static str,
+    /// `fracture.calibration`.
+    pub calibration: &'static str,
+    /// `model.dimension` (`"plane_stress"` or `"plane_strain"`).
+    pub dimension: &'static str,
+    /// Poisson ratio (shear model only).
+    pub poisson_ratio: f64,
+    /// `fracture.shear_criterion` (shear model only).
+    pub shear_criterion: &'static str,
+    /// Grip motion.
+    pub loading: Loading,
+    /// Spacing (m).
+    pub spacing: f64,
+    /// Strip length in spacings.
+    pub length_cells: usize,
+    /// Free height between the grips in spacings.
+    pub height_cells: usize,
+    /// Notch length in spacings.
+    pub notch_cells: usize,
+    /// Young's modulus (Pa).
+    pub youngs_modulus: f64,
+    /// Fracture energy G₀ (J/m²).
+    pub fracture_energy: f64,
+}
+
+impl Strip {
+    /// A bond-based strip on the regular grid, mode I, continuum calibration,
+    /// 120 × 30 spacings with a 20-spacing notch, `Δx = 1 mm`.
+    pub fn new(model: &'static str, horizon_factor: f64) -> Self {
+        Self {
+            model,
+            horizon_factor,
+            angle: 0.0,
+            volume_correction: "overlap",
+            calibration: "continuum",
+            dimension: "plane_stress",
+            poisson_ratio: 1.0 / 3.0,
+            shear_criterion: "energy",
+            loading: Loading::Tension,
+            spacing: 1.0e-3,
+            length_cells: 120,
+            height_cells: 30,
+            notch_cells: 20,
+            youngs_modulus: YOUNGS_MODULUS,
+            fracture_energy: FRACTURE_ENERGY,
+        }
+    }
+
+    /// Strip length (m).
+    pub fn length(&self) -> f64 {
+        self.length_cells as f64 * self.spacing
+    }
+
+    /// Free height between the grips (m).
+    pub fn height(&self) -> f64 {
+        self.height_cells as f64 * self.spacing
+    }
+
+    /// Notch length (m).
+    pub fn notch(&self) -> f64 {
+        self.notch_cells as f64 * self.spacing
+    }
+
+    /// Horizon (m).
+    pub fn horizon(&self) -> f64 {
+        self.horizon_factor * self.spacing
+    }
+
+    /// Scene name.
+    pub fn name(&self) -> String {
+        let mode = match self.loading {
+            Loading::Tension => "mode1",
+            Loading::Shear => "mode2",
+        };
+        let mut name = format!(
+            "strip_{}_{mode}_m{:.3}_{}_{}deg_{}x{}",
+            self.model,
+            self.horizon_factor,
+            self.volume_correction,
+            self.angle,
+            self.length_cells,
+            self.height_cells
+        )
+        .replace('.', "p");
+        if self.model == "shear" {
+            let _ = write!(name, "_{}", self.shear_criterion);
+        }
+        if self.youngs_modulus != YOUNGS_MODULUS || self.fracture_energy != FRACTURE_ENERGY {
+            let _ = write!(
+                name,
+                "_E{:e}_G{:e}",
+                self.youngs_modulus, self.fracture_energy
+            );
+        }
+        if self.spacing != 1.0e-3 {
+            let _ = write!(name, "_h{:e}", self.spacing);
+        }
+        if self.calibration != "continuum" {
+            let _ = write!(name, "_{}", self.calibration);
+        }
+        name
+    }
+
+    /// Grip depth: whole spacings, at least a horizon and one spacing.
+    fn grip(&self) -> f64 {
+        (self.horizon_factor.ceil() + 1.0) * self.spacing
+    }
+
+    /// The point-file text of the rotated lattice (`None` on the regular grid):
+    /// `x y volume` per row, lattice offset so that no point lies on `y = 0`.
+    pub fn point_file(&self) -> Option<String> {
+        if self.angle == 0.0 {
+            return None;
+        }
+        let h = self.spacing;
+        let (s, c) = self.angle.to_radians().sin_cos();
+        let (x_max, y_max) = (
+            self.length(),
+            0.5 * self.height_cells as f64 * h + self.grip(),
+        );
+        // An offset that keeps points off the crack line and the box edges.
+        let origin = [0.5 * self.length() + 0.3183 * h, 0.4142 * h];
+        let reach = ((x_max * x_max + 4.0 * y_max * y_max).sqrt() / h).ceil() as i64 + 2;
+        let mut text = String::from("# x y volume (rotated square lattice)\n");
+        for i in -reach..=reach {
+            for j in -reach..=reach {
+                let (a, b) = (i as f64 * h, j as f64 * h);
+                let x = origin[0] + c * a - s * b;
+                let y = origin[1] + s * a + c * b;
+                if (0.0..x_max).contains(&x) && y.abs() < y_max {
+                    let _ = writeln!(text, "{x:.12e} {y:.12e} {:.12e}", h * h);
+                }
+            }
+        }
+        Some(text)
+    }
+
+    /// The scene file text; `points` is the point file's path relative to the
+    /// scene (rotated lattice only).
+    pub fn toml(&self, points: &str) -> String {
+        let h = self.spacing;
+        let half = 0.5 * self.height_cells as f64 * h;
+        let (top, bottom) = (half + self.grip(), -half - self.grip());
+        let slab = |y0: f64, y1: f64| {
+            format!(
+                "{{ min = [-1.0, {y0:e}], max = [{:e}, {y1:e}] }}",
+                self.length() + 1.0
+            )
+        };
+        // Beyond G₀ D with D ≤ 4 at λ = 1: G = E' ε² H / 2 of the uncracked strip.
+        let grip_displacement =
+            (2.0 * 4.0 * self.fracture_energy * 2.0 * half / self.youngs_modulus).sqrt();
+        let (gx, gy) = match self.loading {
+            Loading::Tension => (0.0, grip_displacement),
+            Loading::Shear => (grip_displacement, 0.0),
+        };
+        let mut t = String::new();
+        let _ = writeln!(
+            t,
+            "# Calibration strip (damage::calibration): {} x {} spacings of {h:e} m, edge \
+             pre-crack of {} spacings along y = 0,\n# lattice rotated by {}°.\n\
+             name = \"{}\"\n\n[model]\ndimension = \"{}\"\nkind = \"{}\"\n\n\
+             [discretization]\nhorizon_factor = {}\nvolume_correction = \"{}\"\n\n\
+             [materials.strip]\nyoungs_modulus = {:e}\n{}fracture_energy = {}\n",
+            self.length_cells,
+            self.height_cells,
+            self.notch_cells,
+            self.angle,
+            self.name(),
+            self.dimension,
+            self.model,
+            self.horizon_factor,
+            self.volume_correction,
+            self.youngs_modulus,
+            if self.model == "shear" {
+                format!("poisson_ratio = {}\n", self.poisson_ratio)
+            } else {
+                String::new()
+            },
+            self.fracture_energy,
+        );
+        if self.angle == 0.0 {
+            let _ = writeln!(
+                t,
+                "[[regions]]\nmaterial = \"strip\"\nspacing = {h:e}\nbox = {{ min = [0.0, {bottom:e}], max = [{:e}, {top:e}] }}\n",
+                self.length()
+            );
+        } else {
+            let _ = writeln!(
+                t,
+                "[[point_files]]\npath = \"{points}\"\nmaterial = \"strip\"\n"
+            );
+        }
+        let guard = 0.5 * half;
+        let _ = writeln!(
+            t,
+            "[[cracks]]\nfrom = [{:e}, 0.0]\nto = [{:e}, 0.0]\n\n\
+             [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ x = 0.0, y = 0.0 }}\n\n\
+             [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ x = {gx:e}, y = {gy:e} }}\n\n\
+             [fracture]\ncalibration = \"{}\"\n{}no_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
+             [quasi_static]\nstrategy = \"event\"\nmax_load_factor = {}",
+            -h,
+            self.notch(),
+            slab(2.0 * bottom, -half),
+            slab(half, 2.0 * top),
+            self.calibration,
+            if self.model == "shear" {
+                format!("shear_criterion = \"{}\"\n", self.shear_criterion)
+            } else {
+                String::new()
+            },
+            slab(2.0 * bottom, -guard),
+            slab(guard, 2.0 * top),
+            // Shear: G = μ γ² H / 2 with μ ≥ E/3, so three times the displacement.
+            match self.loading {
+                Loading::Tension => 1.0,
+                Loading::Shear => 3.0,
+            },
+        );
+        t
+    }
+
+    /// Writes the scene (and its point file) into `dir`; returns the scene's path.
+    pub fn write(&self, dir: &Path) -> std::io::Result<std::path::PathBuf> {
+        std::fs::create_dir_all(dir)?;
+        let points = format!("{}.points", self.name());
+        if let Some(text) = self.point_file() {
+            std::fs::write(dir.join(&points), text)?;
+        }
+        let path = dir.join(format!("{}.toml", self.name()));
+        std::fs::write(&path, self.toml(&points))?;
+        Ok(path)
+    }
+}
+
+/// What a calibration strip dissipated ([`Strip::dissipation`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct StripDissipation {
+    /// Energy booked in the steady window over `G₀ ×` its length: the dissipation factor.
+    pub d: f64,
+    /// Work of the grip to separation over `G₀ × (length − notch)`.
+    pub work: f64,
+    /// The steady window `[start, end)` along `x` (m).
+    pub window: (f64, f64),
+    /// Energy booked per spacing along the strip, over `G₀ × spacing`.
+    pub profile: Vec<f64>,
+    /// Points of the strip.
+    pub points: usize,
+    /// Directed bonds broken.
+    pub bonds_broken: usize,
+    /// Wall time of the run (s).
+    pub seconds: f64,
+}
+
+/// Books every event's released energy at the midpoints of the bonds it broke.
+struct Booking {
+    /// Reaction component of the moving grip (1: mode I, 0: mode II).
+    axis: usize,
+    /// Intact flags after the previous event.
+    intact: Vec<bool>,
+    /// Grip displacement and reaction at the last critical state.
+    critical: Option<(f64, f64)>,
+    /// `(x of the bond's midpoint, energy)` of every broken bond.
+    booked: Vec<(f64, f64)>,
+    /// Work of the grip, `Σ ΔE`.
+    total: f64,
+}
+
+impl Observer for Booking {
+    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error> {
+        // The moving grip is the scene's second boundary set ("top").
+        let reaction = record.reactions[1][self.axis];
+        match record.state {
+            StateKind::Critical => self.critical = Some((record.displacement, reaction)),
+            StateKind::Broken => {
+                let (Some((u, r_critical)), Some(snap)) = (self.critical.take(), snapshot) else {
+                    return Ok(());
+                };
+                let released = 0.5 * u * (r_critical - reaction);
+                let (x, bonds) = (&snap.disc.points.x, &snap.disc.bonds);
+                let mut midpoints = Vec::new();
+                for i in 0..x.len() {
+                    for b in bonds.owned_by(i) {
+                        if self.intact[b] && !bonds.intact[b] {
+                            let j = bonds.neighbour[b] as usize;
+                            midpoints.push(0.5 * (x[i][0] + x[j][0]));
+                            self.intact[b] = false;
+                        }
+                    }
+                }
+                let share = released / midpoints.len().max(1) as f64;
+                self.booked
+                    .extend(midpoints.into_iter().map(|m| (m, share)));
+                self.total += released;
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+impl Strip {
+    /// Runs the strip (its scene written into `dir`) with the event strategy to
+    /// separation and books the energy of every event at the midpoints of the
+    /// bonds it broke, `Δ (R_critical − R_broken) / 2`. The steady window runs
+    /// from `notch + 3δ` to `length − max(H, 4δ)` (beyond it the remaining
+    /// ligament bends), in whole spacings with edges a quarter spacing off the
+    /// lattice's bond midpoints.
+    pub fn dissipation(&self, dir: &Path) -> Result<StripDissipation, Error> {
+        let path = self.write(dir).map_err(|e| Error::io(dir, e))?;
+        let mut scene = crate::scene::load(&path)?;
+        scene.output.every = Some(1);
+        let start_time = Instant::now();
+        let prepared = static_solve::prepare(&scene)?;
+        let points = prepared.disc.points.len();
+        let mut booking = Booking {
+            axis: match self.loading {
+                Loading::Tension => 1,
+                Loading::Shear => 0,
+            },
+            intact: prepared.disc.bonds.intact.clone(),
+            critical: None,
+            booked: Vec::new(),
+            total: 0.0,
+        };
+        quasi_static::run(&scene, prepared, &mut booking)?;
+        let h = self.spacing;
+        let start = (((self.notch() + 3.0 * self.horizon()) / h).ceil() + 0.25) * h;
+        let last = self.length() - self.height().max(4.0 * self.horizon());
+        let end = start + ((last - start) / h).floor() * h;
+        let g0 = self.fracture_energy;
+        let in_window: f64 = booking
+            .booked
+            .iter()
+            .filter(|(x, _)| (start..end).contains(x))
+            .map(|(_, e)| e)
+            .sum();
+        let mut profile = vec![0.0; self.length_cells];
+        for (x, e) in &booking.booked {
+            let k = ((x / h).floor().max(0.0) as usize).min(self.length_cells - 1);
+            profile[k] += e / (g0 * h);
+        }
+        Ok(StripDissipation {
+            d: in_window / (g0 * (end - start)),
+            work: booking.total / (g0 * (self.length() - self.notch())),
+            window: (start, end),
+            profile,
+            points,
+            bonds_broken: booking.booked.len(),
+            seconds: start_time.elapsed().as_secs_f64(),
+        })
     }
 }

@@ -213,7 +213,11 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
         .materials
         .iter()
         .any(|m| m.fracture.is_some())
-        .then(|| Criterion::new(scene, &disc));
+        .then(|| {
+            let (criterion, report) = Criterion::with_report(scene, &disc);
+            report.notes().iter().for_each(|n| eprintln!("note: {n}"));
+            criterion
+        });
     Ok(match (scene.model, dy.kernel) {
         (ModelKind::BondBased, ForceKernel::Nonlinear) => {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);

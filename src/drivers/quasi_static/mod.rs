@@ -55,7 +55,7 @@ use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::AppliedLoad;
 use crate::assembly::rigid_modes;
 use crate::assembly::stiffness::{self, Stiffness};
-use crate::damage::{self, Criterion};
+use crate::damage::{self, CalibrationReport, Criterion};
 use crate::discretization::Discretization;
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
@@ -219,8 +219,11 @@ pub struct QuasiStaticSolution {
     pub records: Vec<StepRecord>,
     /// Every solve.
     pub solves: Vec<ResolveRecord>,
-    /// What breaking did to the system (held points, released mechanisms, free pieces).
+    /// What breaking did to the system (held points, released mechanisms, free
+    /// pieces), after the notes of the fracture calibration.
     pub log: Vec<String>,
+    /// How every owner's critical value was calibrated.
+    pub calibration: CalibrationReport,
     /// How the run ended.
     pub outcome: Outcome,
     /// Setup time per phase.
@@ -334,7 +337,7 @@ fn run_with<M: Model>(
     let t = Instant::now();
     let stiffness = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
     let diagonal = mean_diagonal(&stiffness, pipeline.pattern());
-    let criterion = Criterion::new(scene, &disc);
+    let (criterion, calibration) = Criterion::with_report(scene, &disc);
     timings.assembly = t.elapsed().as_secs_f64();
     let reference_displacement = scene
         .boundaries
@@ -367,7 +370,7 @@ fn run_with<M: Model>(
         peak_reaction: 0.0,
         reference_displacement,
         solves: Vec::new(),
-        log: Vec::new(),
+        log: calibration.notes(),
         start,
     };
     run.solve(0, true)?;
@@ -405,6 +408,7 @@ fn run_with<M: Model>(
         records,
         solves: run.solves,
         log: run.log,
+        calibration,
         outcome,
         timings,
         loads,

@@ -1,0 +1,171 @@
+//! Energy-consistent critical values: what `fracture_energy = G₀` means.
+//!
+//! The papers' critical values (000 Eq. 12, 001 Eq. 40; [`super`]) make the bonds
+//! that cross a unit area of a straight cut in a continuum hold `G₀` at their
+//! critical value (the **continuum** calibration). A discrete body dissipates more
+//! than that per unit area of crack growth: bonds off the crack line break too
+//! (the crack is a band about a spacing wide), and releasing a bond at fixed
+//! displacement releases more than its own energy, since its neighbours relax
+//! (validation/fracture/README.md, Sec. 2). The ratio
+//!
+//! ```text
+//! D = (energy dissipated per unit area of steady crack growth) / G₀
+//! ```
+//!
+//! is a property of the lattice: of `m = δ/Δx`, the partial-volume rule, the
+//! dimension and the criterion. It does not depend on E or G₀: the model is
+//! linear between events, so scaling every critical value by `k` scales every
+//! event load by `k` and leaves the sequence of breaks unchanged, and the energy
+//! scales by `k²`. Neither does it depend on the spacing at fixed `m` (the strip
+//! below scales with it). Hence the **dissipation** calibration (the default):
+//!
+//! ```text
+//! s₀ = s₀(continuum) / sqrt(D(m_i))        (bond-based, per owner i, m_i = δ_i/Δx_i)
+//! ```
+//!
+//! makes steady growth dissipate `G₀` per unit area on every owner's lattice.
+//!
+//! **How `D` is measured** (`examples/fracture_calibration.rs`, regenerates the
+//! tables): a strip of 120 × 30 spacings between clamped grips, split from an
+//! edge pre-crack of 20 spacings by the event strategy with the continuum values.
+//! Every event releases `Δ (R_critical − R_broken) / 2` at fixed grip
+//! displacement `Δ`; that energy is booked at the midpoints of the bonds the
+//! event broke, and `D` is the energy booked between `notch + 3δ` and
+//! `length − H`, over `G₀` times that length (the profile is flat there: steady
+//! growth). Measured as well (validation/fracture/README.md): the crack at 30° and
+//! 45° to the grid, a taller strip, other E, G₀ and spacing.
+//!
+//! With overlap partial volumes (the default) the factor is interpolated linearly
+//! between the tabulated `m`; without correction or with the ramp, whose bond
+//! sets jump with `m`, it applies at the tabulated `m` only. Elsewhere,
+//! in 1D and 3D, and for points of a Gmsh mesh (an irregular cloud, not measured),
+//! the continuum value is used and the run says so.
+
+use crate::scene::{Dimension, VolumeCorrection};
+
+/// `(m, D)` of the bond-based model, 2D, overlap partial volumes (the default).
+const BOND_BASED_2D_OVERLAP: &[(f64, f64)] = &[
+    (2.015, 1.5002),
+    (2.515, 1.2855),
+    (3.015, 1.2358),
+    (3.515, 1.2300),
+    (4.015, 1.1486),
+    (4.515, 1.0957),
+    (5.015, 1.0897),
+];
+
+/// `(m, D)` of the bond-based model, 2D, no partial-volume correction (at these
+/// `m` only: without partial volumes the bond set jumps between them).
+const BOND_BASED_2D_NONE: &[(f64, f64)] = &[(3.015, 1.2756), (4.015, 1.0631)];
+
+/// `(m, D)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only).
+const BOND_BASED_2D_RAMP: &[(f64, f64)] = &[(3.015, 1.0694), (4.015, 0.9711)];
+
+/// Why a point keeps its continuum critical value under the dissipation calibration.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Uncalibrated {
+    /// `m` outside the measured range.
+    HorizonFactor,
+    /// No table for the dimension (1D, 3D).
+    Dimension,
+    /// A point of a Gmsh mesh: an irregular cloud.
+    Irregular,
+    /// No table for the model and criterion.
+    Model,
+}
+
+impl Uncalibrated {
+    /// The reason, for the run's notes.
+    pub fn explain(self) -> &'static str {
+        match self {
+            Uncalibrated::HorizonFactor => "the horizon factor is outside the measured range",
+            Uncalibrated::Dimension => "the dissipation factor is measured in 2D only",
+            Uncalibrated::Irregular => {
+                "points of a Gmsh mesh form an irregular cloud, whose factor is not measured"
+            }
+            Uncalibrated::Model => "no dissipation factor is measured for this model's criterion",
+        }
+    }
+}
+
+/// The dissipation factor `D` of a bond-based owner with horizon factor `m`
+/// on a regular lattice, or why there is none.
+pub fn bond_based_factor(
+    dimension: Dimension,
+    rule: VolumeCorrection,
+    m: f64,
+) -> Result<f64, Uncalibrated> {
+    if !matches!(dimension, Dimension::PlaneStress | Dimension::PlaneStrain) {
+        return Err(Uncalibrated::Dimension);
+    }
+    match rule {
+        VolumeCorrection::Overlap => interpolate(BOND_BASED_2D_OVERLAP, m),
+        VolumeCorrection::None => node(BOND_BASED_2D_NONE, m),
+        VolumeCorrection::Ramp => node(BOND_BASED_2D_RAMP, m),
+    }
+    .ok_or(Uncalibrated::HorizonFactor)
+}
+
+/// The tabulated value at `m` (to a relative 1e-9), without interpolation.
+fn node(table: &[(f64, f64)], m: f64) -> Option<f64> {
+    table
+        .iter()
+        .find(|&&(x, _)| (x - m).abs() <= 1e-9 * x)
+        .map(|&(_, d)| d)
+}
+
+/// Linear interpolation in a table sorted by its first column; `None` outside it.
+/// The ends are widened by a relative 1e-9 so that `m` computed as `δ/Δx`
+/// matches a tabulated value.
+fn interpolate(table: &[(f64, f64)], m: f64) -> Option<f64> {
+    let (first, last) = (table.first()?, table.last()?);
+    if m < first.0 * (1.0 - 1e-9) || m > last.0 * (1.0 + 1e-9) {
+        return None;
+    }
+    let m = m.clamp(first.0, last.0);
+    let k = table
+        .partition_point(|&(x, _)| x < m)
+        .clamp(1, table.len().max(2) - 1);
+    if table.len() == 1 {
+        return Some(first.1);
+    }
+    let ((x0, y0), (x1, y1)) = (table[k - 1], table[k]);
+    Some(y0 + (y1 - y0) * (m - x0) / (x1 - x0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn interpolation_hits_the_nodes_and_refuses_outside() {
+        let t = [(2.0, 1.5), (3.0, 1.2), (4.0, 1.1)];
+        assert_eq!(interpolate(&t, 2.0), Some(1.5));
+        assert_eq!(interpolate(&t, 4.0), Some(1.1));
+        assert!((interpolate(&t, 2.5).unwrap() - 1.35).abs() < 1e-15);
+        assert!((interpolate(&t, 3.5).unwrap() - 1.15).abs() < 1e-15);
+        assert_eq!(interpolate(&t, 1.9), None);
+        assert_eq!(interpolate(&t, 4.1), None);
+        assert_eq!(interpolate(&[], 3.0), None);
+    }
+
+    #[test]
+    fn nodes_only_tables_refuse_between_their_nodes() {
+        let t = [(3.015, 1.3), (4.015, 1.1)];
+        assert_eq!(node(&t, 3.015), Some(1.3));
+        assert_eq!(node(&t, 0.1 * 40.15), Some(1.1));
+        assert_eq!(node(&t, 3.5), None);
+    }
+
+    #[test]
+    fn every_table_is_sorted() {
+        for t in [
+            BOND_BASED_2D_OVERLAP,
+            BOND_BASED_2D_NONE,
+            BOND_BASED_2D_RAMP,
+        ] {
+            assert!(t.windows(2).all(|w| w[0].0 < w[1].0));
+            assert!(t.iter().all(|&(_, d)| d.is_finite() && d > 0.0));
+        }
+    }
+}
