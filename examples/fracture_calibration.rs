@@ -146,10 +146,13 @@ fn independence(model: &'static str, m: f64) {
 
 /// The shear model's criteria in mode I and mode II (a shorter strip: every
 /// shear-model event re-solves the broken owners' whole families).
-fn modes(m: f64) {
+fn modes(m: f64, only: Option<&str>) {
     let mut csv = String::from(HEADER);
     for criterion in ["deviatoric", "energy"] {
         for loading in [Loading::Tension, Loading::Shear] {
+            if only.is_some_and(|c| c != criterion) {
+                continue;
+            }
             let mut s = Strip::new("shear", m);
             s.shear_criterion = criterion;
             s.loading = loading;
@@ -158,7 +161,13 @@ fn modes(m: f64) {
             s.notch_cells = 15;
             let r = measure(&s);
             row(&mut csv, criterion, &s, &r);
-            write("calibration_modes_shear.csv", &csv);
+            write(
+                &format!(
+                    "calibration_modes_shear{}.csv",
+                    only.map_or(String::new(), |c| format!("_{c}"))
+                ),
+                &csv,
+            );
         }
     }
 }
@@ -185,7 +194,10 @@ fn main() {
             ),
         },
         Some("check") => check(model),
-        Some("modes") => modes(args.get(1).and_then(|a| a.parse().ok()).unwrap_or(3.015)),
+        Some("modes") => modes(
+            args.get(1).and_then(|a| a.parse().ok()).unwrap_or(3.015),
+            args.get(2).map(String::as_str),
+        ),
         Some("independence") => independence(model, 3.015),
         _ => eprintln!("usage: fracture_calibration one [m]|table [overlap|none|ramp]|independence|check [shear]"),
     }

@@ -21,6 +21,7 @@
 //!
 //! ```text
 //! s₀ = s₀(continuum) / sqrt(D(m_i))        (bond-based, per owner i, m_i = δ_i/Δx_i)
+//! ε^d_max, or the energy criterion's value, / sqrt(D(m_i, ν))   (shear model, mode I)
 //! ```
 //!
 //! makes steady growth dissipate `G₀` per unit area on every owner's lattice.
@@ -41,7 +42,7 @@
 //! in 1D and 3D, and for points of a Gmsh mesh (an irregular cloud, not measured),
 //! the continuum value is used and the run says so.
 
-use crate::scene::{Dimension, VolumeCorrection};
+use crate::scene::{Dimension, EnergyCounting, ShearCriterion, VolumeCorrection};
 
 /// `(m, D)` of the bond-based model, 2D, overlap partial volumes (the default).
 const BOND_BASED_2D_OVERLAP: &[(f64, f64)] = &[
@@ -61,6 +62,16 @@ const BOND_BASED_2D_NONE: &[(f64, f64)] = &[(3.015, 1.2756), (4.015, 1.0631)];
 /// `(m, D)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only).
 const BOND_BASED_2D_RAMP: &[(f64, f64)] = &[(3.015, 1.0694), (4.015, 0.9711)];
 
+/// `(m, D)` of the shear model in mode I, 2D, overlap partial volumes, ν = 1/3,
+/// energy criterion, pair counting (at these `m` only).
+const SHEAR_2D_ENERGY: &[(f64, f64)] = &[(3.015, 1.7732)];
+
+/// The same for the deviatoric criterion of 001 Eq. 37.
+const SHEAR_2D_DEVIATORIC: &[(f64, f64)] = &[(3.015, 2.0081)];
+
+/// The Poisson ratio of the shear model's measurements.
+const SHEAR_POISSON_RATIO: f64 = 1.0 / 3.0;
+
 /// Why a point keeps its continuum critical value under the dissipation calibration.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Uncalibrated {
@@ -72,6 +83,8 @@ pub enum Uncalibrated {
     Irregular,
     /// No table for the model and criterion.
     Model,
+    /// The shear model's factor is measured at one Poisson ratio.
+    PoissonRatio,
 }
 
 impl Uncalibrated {
@@ -84,6 +97,9 @@ impl Uncalibrated {
                 "points of a Gmsh mesh form an irregular cloud, whose factor is not measured"
             }
             Uncalibrated::Model => "no dissipation factor is measured for this model's criterion",
+            Uncalibrated::PoissonRatio => {
+                "the shear model's dissipation factor is measured at poisson_ratio = 1/3 only"
+            }
         }
     }
 }
@@ -104,6 +120,37 @@ pub fn bond_based_factor(
         VolumeCorrection::Ramp => node(BOND_BASED_2D_RAMP, m),
     }
     .ok_or(Uncalibrated::HorizonFactor)
+}
+
+/// The mode-I dissipation factor of a shear-model owner with horizon factor `m`
+/// and Poisson ratio `nu`, for the pair count of `G₀` (the paper's one-bond count
+/// stores twice the energy at the same strain: `2 D`).
+pub fn shear_factor(
+    dimension: Dimension,
+    rule: VolumeCorrection,
+    criterion: ShearCriterion,
+    counting: EnergyCounting,
+    nu: f64,
+    m: f64,
+) -> Result<f64, Uncalibrated> {
+    if !matches!(dimension, Dimension::PlaneStress | Dimension::PlaneStrain) {
+        return Err(Uncalibrated::Dimension);
+    }
+    if rule != VolumeCorrection::Overlap {
+        return Err(Uncalibrated::HorizonFactor);
+    }
+    if (nu - SHEAR_POISSON_RATIO).abs() > 1e-9 {
+        return Err(Uncalibrated::PoissonRatio);
+    }
+    let table = match criterion {
+        ShearCriterion::Energy => SHEAR_2D_ENERGY,
+        ShearCriterion::Deviatoric => SHEAR_2D_DEVIATORIC,
+    };
+    let pair = node(table, m).ok_or(Uncalibrated::HorizonFactor)?;
+    Ok(match counting {
+        EnergyCounting::Pair => pair,
+        EnergyCounting::OneBond => 2.0 * pair,
+    })
 }
 
 /// The tabulated value at `m` (to a relative 1e-9), without interpolation.

@@ -37,6 +37,38 @@
 //! (`fracture.shear_energy = "pair"`), the one consistent with the energy the
 //! model stores, as the bond-based rule is; `"one_bond"` is the paper's.
 //!
+//! **Shear model, energy criterion** (`fracture.shear_criterion = "energy"`, the
+//! default). The deviatoric rule counts only the deviatoric part of a bond's energy;
+//! in mode I the dilatation takes about half of the opening strain, so the bonds
+//! across a crack are stretched about twice as far as bond-based bonds before they
+//! break (validation/fracture/README.md). The energy density of owner `i` in the
+//! variational form of the model (formulation Sec. 4) is
+//! `W_i = K θ_i²/2 + (d μ/m_i) Σ_j (ε^d_ij)² V_j`; with `ω = 1/|ξ|²` the weights
+//! `V_j/m_i` sum to one, so bond `i→j` carries the share
+//!
+//! ```text
+//! e_ij = V_j (K θ_i²/2 + d μ (ε^d_ij)²) / m_i   = V_j q_ij / m_i
+//! ```
+//!
+//! and breaks when `q_ij = K θ_i²/2 + d μ (ε^d_ij)² ≥ q_c` (with the tension check
+//! of 001 Eq. 37). The crossing integral of a straight cut (pairs counted twice,
+//! as above), `G₀ = 2 (q_c/m) ∫ crossing V V`, with `∫ = 2δ³/3` per unit length
+//! (2D, per unit thickness, `m = πδ²`) or `πδ⁴/4` per unit area (3D,
+//! `m = 4πδ³/3`), gives
+//!
+//! ```text
+//! 2D:  q_c = 3π G₀ / (4 δ)          3D:  q_c = 8 G₀ / (3 δ)
+//! ```
+//!
+//! which is `d μ (ε^d_max)²` with the pair-counted `ε^d_max` above: the two rules
+//! agree where `θ_i = 0` and the energy rule breaks earlier where the bond's owner
+//! dilates. The ratio `sqrt(q_ij / q_c)` is positively homogeneous of degree one in
+//! the displacements, as the event strategy needs.
+//!
+//! **Calibration** ([`calibration`]): with `fracture.calibration = "dissipation"`
+//! (the default) every critical value from `G₀` above is divided by `sqrt(D)`, the
+//! measured excess dissipation of the owner's lattice.
+//!
 //! Damage of a point (formulation Sec. 5): `φ_i = 1 − Σ_intact V_j ν_ij / Σ_all V_j ν_ij`
 //! over the bonds it owns.
 
@@ -200,7 +232,14 @@ fn dissipation_factor(
         ModelKind::BondBased => {
             calibration::bond_based_factor(scene.dimension, scene.volume_correction, m)
         }
-        ModelKind::Shear => Err(Uncalibrated::Model),
+        ModelKind::Shear => calibration::shear_factor(
+            scene.dimension,
+            scene.volume_correction,
+            scene.fracture.shear_criterion,
+            scene.fracture.shear_energy,
+            scene.materials[disc.points.material[i] as usize].poisson_ratio,
+            m,
+        ),
     }
 }
 

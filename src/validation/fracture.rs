@@ -81,6 +81,8 @@ pub struct Sent {
     pub centre_crack: Option<f64>,
     /// `fracture.calibration` (`"dissipation"`, the default, or `"continuum"`).
     pub calibration: &'static str,
+    /// `fracture.shear_criterion` (shear model: `"energy"`, the default, or `"deviatoric"`).
+    pub shear_criterion: &'static str,
 }
 
 /// Half-length of the inclined centre crack (m).
@@ -112,6 +114,7 @@ impl Sent {
             notch: NOTCH,
             centre_crack: None,
             calibration: "dissipation",
+            shear_criterion: "energy",
         }
     }
 
@@ -153,6 +156,9 @@ impl Sent {
         }
         if self.calibration != "dissipation" {
             let _ = write!(name, "_{}", self.calibration);
+        }
+        if self.model == "shear" && self.shear_criterion != "energy" {
+            let _ = write!(name, "_{}", self.shear_criterion);
         }
         if self.depth.is_some() {
             name.push_str("_3d");
@@ -255,11 +261,16 @@ impl Sent {
             "[[cracks]]\n{crack}\n\n\
              [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ {held} }}\n\n\
              [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ {pulled} }}\n\n\
-             [fracture]\ncalibration = \"{}\"\nno_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
+             [fracture]\ncalibration = \"{}\"\n{}no_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
              [quasi_static]\nstrategy = \"{}\"\nmax_load_factor = {}",
             slab(bottom, -0.5 * LENGTH),
             slab(0.5 * LENGTH, top),
             self.calibration,
+            if self.model == "shear" {
+                format!("shear_criterion = \"{}\"\n", self.shear_criterion)
+            } else {
+                String::new()
+            },
             slab(bottom, -guard),
             slab(guard, top),
             self.strategy,
