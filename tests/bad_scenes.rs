@@ -387,6 +387,10 @@ const CASES: &[Case] = &[
     c("mesh_file_missing", &[Whole(MESH_STRIP), MESH_PTS, Rep(concat!(env!("CARGO_MANIFEST_DIR"), "\""), "missing.msh\"")], None, 4, &["missing.msh"]),
     c("mesh_3d_read_as_2d", &[Whole(MESH_STRIP), Rep("bimaterial_strip.msh", "cube_tet_h0.25.msh"), Rep("groups = { soft = \"soft\", stiff = \"stiff\" }", "material = \"soft\"")], None, 2, &["meshes[0].path", "3D elements"]),
     c("mesh_in_1d", &[Whole(MESH_STRIP), Rep("plane_stress", "1d")], None, 2, &["meshes[0]", "2D or 3D"]),
+    // --- hardening round 3 (issue 17) ---
+    // `face` shares a traction by grid spacing: on a triangle mesh it gave 1.414 × the force.
+    c("traction_face_on_a_mesh", &[Whole(MESH_STRIP), Rep("group = \"right\"", "face = \"+x\"")], None, 2, &["loads[0].face", "meshes[0] (element", "`group`"]),
+    c("traction_face_on_a_point_file", &[Add(PF), Rep("box = { min = [0.19, 0.0], max = [0.2, 0.1] }\nvalue", "value")], Some(ROWS_OK), 2, &["loads[0].face", "point_files[0] (line 2)", "regions"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

@@ -16,7 +16,7 @@ mod neighbours;
 pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
-use crate::geometry::grid::{self, RawPoint};
+use crate::geometry::grid::{self, RawPoint, Source};
 use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::{norm, point_file, sub};
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
@@ -36,6 +36,8 @@ pub struct Points {
     pub horizon: Vec<f64>,
     /// Material index into the scene's materials.
     pub material: Vec<u32>,
+    /// The scene item each point comes from (a region, a point-file line, a mesh cell).
+    pub source: Vec<Source>,
 }
 
 impl Points {
@@ -56,6 +58,7 @@ impl Points {
             spacing: raw.iter().map(|p| p.spacing).collect(),
             horizon: raw.iter().map(|p| p.horizon).collect(),
             material: raw.iter().map(|p| p.material).collect(),
+            source: raw.iter().map(|p| p.source).collect(),
         }
     }
 }
