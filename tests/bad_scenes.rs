@@ -97,6 +97,20 @@ const MESH_STRIP: &str = concat!(
     "[[loads]]\nname = \"pull\"\nkind = \"traction\"\ngroup = \"right\"\nvalue = [1.0e6, 0.0]\n"
 );
 
+/// The strip mesh (0 ≤ x ≤ 1, 0 ≤ y ≤ 0.1) as a second body of one material.
+const STRIP_MESH: &str = concat!(
+    "\n[[meshes]]\npath = \"",
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/plate_with_hole/gmsh/bimaterial_strip.msh\"\nmaterial = \"soft\"\n"
+);
+
+/// The triangle mesh of the plate with a hole (|x|, |y| ≤ 0.5) as a second body.
+const HOLE_MESH: &str = concat!(
+    "\n[[meshes]]\npath = \"",
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/plate_with_hole/gmsh/plate_hole_tri_h0.02.msh\"\nmaterial = \"soft\"\n"
+);
+
 /// The strip mesh as an arbitrary file `pts.xyz` next to the scene.
 const MESH_PTS: Edit = Rep("/validation/plate_with_hole/gmsh/bimaterial_strip.msh", "");
 
@@ -391,6 +405,11 @@ const CASES: &[Case] = &[
     // `face` shares a traction by grid spacing: on a triangle mesh it gave 1.414 × the force.
     c("traction_face_on_a_mesh", &[Whole(MESH_STRIP), Rep("group = \"right\"", "face = \"+x\"")], None, 2, &["loads[0].face", "meshes[0] (element", "`group`"]),
     c("traction_face_on_a_point_file", &[Add(PF), Rep("box = { min = [0.19, 0.0], max = [0.2, 0.1] }\nvalue", "value")], Some(ROWS_OK), 2, &["loads[0].face", "point_files[0] (line 2)", "regions"]),
+    // Bodies of different sources covering the same space would double the material.
+    c("mesh_overlaps_a_region", &[Add(STRIP_MESH)], None, 2, &["meshes[0]", "inside regions[0].box", "must not overlap"]),
+    c("point_file_inside_a_region", &[Add(PF)], Some("0.1 0.05 1e-6\n"), 2, &["point_files[0]", "line 1", "inside regions[0].box"]),
+    c("point_file_inside_a_mesh", &[Whole(MESH_STRIP), Add(PF)], Some("0.615 0.005 1e-6\n"), 2, &["point_files[0]", "line 1", "in the cell of meshes[0]"]),
+    c("two_meshes_overlap", &[Whole(MESH_STRIP), Add(HOLE_MESH)], None, 2, &["meshes[0]", "in the cell of meshes[1]"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

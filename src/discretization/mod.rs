@@ -13,6 +13,7 @@
 
 pub mod groups;
 mod neighbours;
+mod overlap;
 pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
@@ -175,6 +176,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
     reject_duplicates(&raw)?;
+    overlap::reject_overlaps(&raw, &scene.regions, d)?;
     if scene.horizons == HorizonMode::Constant {
         let largest = raw.iter().map(|p| p.horizon).fold(0.0, f64::max);
         raw.iter_mut().for_each(|p| p.horizon = largest);
