@@ -1,0 +1,139 @@
+//! Regression tests of issue 17 (hardening, round 3) through the real binary:
+//! cases that ran with exit 0 and a wrong or misleading answer. Each run goes in
+//! its own temporary directory; every output file is checked for non-finite
+//! numbers, and nothing may be left beside `--out`.
+
+mod common;
+
+use common::PLATE_SCENE as BASE;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// A per-test temporary directory, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("dhpd-hardening-{}-{tag}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create the test directory");
+        TempDir(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// What a run produced.
+struct Run {
+    code: Option<i32>,
+    stderr: String,
+    /// `summary.json`, when the run succeeded.
+    summary: Option<serde_json::Value>,
+}
+
+/// Runs `dhpd run scene.toml --out out` in a fresh directory named `tag`; checks
+/// that no output file holds a non-finite number, that nothing but `out` was
+/// created, and that `out` exists exactly when the run succeeded.
+fn run(tag: &str, text: &str) -> Run {
+    let dir = TempDir::new(tag);
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, text).expect("write the scene");
+    let out = dir.0.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .current_dir(&dir.0)
+        .output()
+        .expect("start dhpd");
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    let stray: Vec<String> = std::fs::read_dir(&dir.0)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "scene.toml" && n != "out")
+        .collect();
+    assert!(stray.is_empty(), "{tag}: left behind {stray:?}");
+    assert!(!stderr.contains("panicked"), "{tag}: {stderr}");
+    assert_eq!(
+        out.exists(),
+        o.status.success(),
+        "{tag}: the output directory exists iff the run succeeded; {stderr}"
+    );
+    if out.exists() {
+        assert_all_finite(&out);
+    }
+    let summary = std::fs::read_to_string(out.join("summary.json"))
+        .ok()
+        .map(|t| serde_json::from_str(&t).expect("summary.json parses"));
+    Run {
+        code: o.status.code(),
+        stderr,
+        summary,
+    }
+}
+
+/// No file in `dir` holds `nan` or `inf` as a number (CSV, VTU in ASCII, JSON).
+fn assert_all_finite(dir: &Path) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        let bad = text
+            .split(|c: char| c.is_whitespace() || ",[]{}:\"<>".contains(c))
+            .find(|w| {
+                let w = w.trim_start_matches(['-', '+']).to_ascii_lowercase();
+                w == "nan" || w == "inf" || w == "infinity"
+            });
+        assert!(bad.is_none(), "{} holds {bad:?}", path.display());
+    }
+}
+
+fn bonds(s: &serde_json::Value) -> u64 {
+    s["counts"]["bonds"].as_u64().expect("counts.bonds")
+}
+
+fn max_displacement(s: &serde_json::Value) -> f64 {
+    s["max_displacement"].as_f64().expect("max_displacement")
+}
+
+/// Item 3: a pre-crack drawn exactly through a row of points cuts the bonds that
+/// the same crack an infinitesimal distance to its right cuts (the points on it
+/// count as on its left), so the bonds and the answer are those of the crack
+/// 1e-8 m to the right (reference: no point lies on that one). Before, the crack
+/// on the row at y = 0.045 cut almost nothing of what the shifted one cuts.
+#[test]
+fn a_crack_through_a_row_of_points_cuts_like_one_beside_it() {
+    let crack = |y: f64, x0: f64, x1: f64, tag: &str| {
+        let text = format!("{BASE}\n[[cracks]]\nfrom = [{x0}, {y}]\nto = [{x1}, {y}]\n");
+        run(tag, &text).summary.expect("solves")
+    };
+    let none = run("crack-none", BASE).summary.expect("solves");
+    // The tip at x = 0.1013 lies on no bond between two points, so
+    // shifting it by 1e-8 m changes no bond at the tip (a tip exactly on a bond
+    // cuts it: the crack is closed).
+    let on = crack(0.045, 0.0, 0.1013, "crack-on-row");
+    let beside = crack(0.045 - 1e-8, 0.0, 0.1013, "crack-beside-row");
+    assert!(bonds(&on) < bonds(&none), "the crack on the row cuts bonds");
+    assert_eq!(bonds(&on), bonds(&beside));
+    let (a, b) = (max_displacement(&on), max_displacement(&beside));
+    assert!((a / b - 1.0).abs() < 1e-9, "{a:e} vs {b:e}");
+    // Drawn from right to left, its left is -y: the row counts as below it, as
+    // for the crack 1e-8 m above.
+    let reversed = crack(0.045, 0.1013, 0.0, "crack-on-row-reversed");
+    let above = crack(0.045 + 1e-8, 0.1013, 0.0, "crack-above-row");
+    assert_eq!(bonds(&reversed), bonds(&above));
+    // A crack through the clamped column (x = 0.005, across the plate) cuts
+    // its bonds to the right (the column counts as left of the upward crack):
+    // the plate is then held by nothing.
+    let text = format!("{BASE}\n[[cracks]]\nfrom = [0.005, -0.1]\nto = [0.005, 0.2]\n");
+    let r = run("crack-clamp-column", &text);
+    assert_eq!(r.code, Some(3), "{}", r.stderr);
+    assert!(r.stderr.contains("is not held"), "{}", r.stderr);
+}
