@@ -410,6 +410,11 @@ const CASES: &[Case] = &[
     c("point_file_inside_a_region", &[Add(PF)], Some("0.1 0.05 1e-6\n"), 2, &["point_files[0]", "line 1", "inside regions[0].box"]),
     c("point_file_inside_a_mesh", &[Whole(MESH_STRIP), Add(PF)], Some("0.615 0.005 1e-6\n"), 2, &["point_files[0]", "line 1", "in the cell of meshes[0]"]),
     c("two_meshes_overlap", &[Whole(MESH_STRIP), Add(HOLE_MESH)], None, 2, &["meshes[0]", "in the cell of meshes[1]"]),
+    // A load factor whose states overflow is refused after the first solve, naming it:
+    // the largest unit quantity is the clamp's reaction, 1e6 Pa × 0.1 m × 0.01 m = 1e3 N,
+    // so the bound is 1e250 / 1e3.
+    c("max_load_factor_overflows_the_states", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e300\n")], None, 2, &["quasi_static.max_load_factor", "at most 1.000e247"]),
+    c("max_load_factor_1e308", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e308\nstrategy = \"all\"\n")], None, 2, &["quasi_static.max_load_factor", "at most"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

@@ -137,3 +137,37 @@ fn a_crack_through_a_row_of_points_cuts_like_one_beside_it() {
     assert_eq!(r.code, Some(3), "{}", r.stderr);
     assert!(r.stderr.contains("is not held"), "{}", r.stderr);
 }
+
+/// Item 4: every writer of point data refuses a non-finite number, naming the
+/// field, the point and the file, and writes nothing (a NaN displacement and an
+/// infinite damage, each at one point of the base plate).
+#[test]
+fn point_writers_refuse_non_finite_numbers() {
+    let disc = common::disc(&common::scene(BASE));
+    let n = disc.points.len();
+    let dir = TempDir::new("writers");
+    let mut u = vec![[0.0; 3]; n];
+    u[7][1] = f64::NAN;
+    let mut damage = vec![0.0; n];
+    damage[11] = f64::INFINITY;
+    let zero = vec![[0.0; 3]; n];
+    let nothing = vec![0.0; n];
+    for (u, damage, expect) in [
+        (&u, &nothing, "the displacement of point 7"),
+        (&zero, &damage, "the damage of point 11"),
+    ] {
+        let data = dhpd::output::PointData {
+            disc: &disc,
+            u,
+            velocity: None,
+            stress: None,
+            damage: Some(damage),
+        };
+        let path = dir.0.join("points.vtu");
+        let err = dhpd::output::vtu::write(&path, &data)
+            .expect_err("a non-finite number is refused")
+            .to_string();
+        assert!(err.contains(expect) && err.contains("points.vtu"), "{err}");
+        assert!(!path.exists());
+    }
+}

@@ -13,7 +13,7 @@ pub mod vtu;
 use crate::discretization::Discretization;
 use crate::drivers::quasi_static::QuasiStaticSolution;
 use crate::drivers::static_solve::StaticSolution;
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::{dot, norm, sub};
 use crate::model::Block;
 use crate::scene::Scene;
@@ -95,6 +95,57 @@ pub struct PointData<'a> {
     pub stress: Option<&'a [Block]>,
     /// Damage per point, for fracture runs.
     pub damage: Option<&'a [f64]>,
+}
+
+impl PointData<'_> {
+    /// Refuses to write `file` when a number it would hold is not finite,
+    /// naming the field and the first such point: every writer of point data
+    /// calls this, so no `NaN` or `inf` reaches a result.
+    pub fn ensure_finite(&self, file: &Path) -> Result<(), Error> {
+        let p = &self.disc.points;
+        let vectors = [
+            ("position", Some(&p.x[..])),
+            ("displacement", Some(self.u)),
+            ("velocity", self.velocity),
+        ];
+        let mut bad = vectors
+            .iter()
+            .filter_map(|(name, v)| Some((*name, (*v)?)))
+            .find_map(|(name, v)| {
+                v.iter()
+                    .position(|x| x.iter().any(|c| !c.is_finite()))
+                    .map(|i| (name, i))
+            });
+        let scalars = [
+            ("volume", Some(&p.volume[..])),
+            ("spacing", Some(&p.spacing[..])),
+            ("horizon", Some(&p.horizon[..])),
+            ("damage", self.damage),
+        ];
+        bad = bad.or_else(|| {
+            scalars
+                .iter()
+                .filter_map(|(name, v)| Some((*name, (*v)?)))
+                .find_map(|(name, v)| v.iter().position(|c| !c.is_finite()).map(|i| (name, i)))
+        });
+        bad = bad.or_else(|| {
+            self.stress?
+                .iter()
+                .position(|b| b.iter().flatten().any(|c| !c.is_finite()))
+                .map(|i| ("stress", i))
+        });
+        match bad {
+            None => Ok(()),
+            Some((name, i)) => Err(NumericalError::NonFinite {
+                what: format!(
+                    "the {name} of point {i} (x = {:?}) to be written to {}; nothing was written",
+                    p.x[i],
+                    file.display()
+                ),
+            }
+            .into()),
+        }
+    }
 }
 
 impl StaticSolution {
@@ -200,6 +251,7 @@ pub(crate) fn write_points(
     plan: &Plan,
     data: &PointData,
 ) -> Result<(), Error> {
+    data.ensure_finite(dir)?;
     if scene.output.vtu {
         vtu::write(&dir.join("points.vtu"), data)?;
     }
