@@ -360,7 +360,9 @@ const CASES: &[Case] = &[
     c("dynamics_without_length", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsafety_factor = 0.5\n")], None, 2, &["dynamics", "steps or end_time"]),
     c("dynamics_steps_and_end_time", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nend_time = 1.0\n")], None, 2, &["dynamics.end_time", "not both"]),
     c("dynamics_time_step_above_stable", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ntime_step = 1.0\n")], None, 2, &["dynamics.time_step", "stable time step"]),
-    c("dynamics_forced_unstable_diverges", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\n")], None, 3, &["diverged", "point"]),
+    c("dynamics_forced_unstable_diverges", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\nbalance_tolerance = inf\n")], None, 3, &["diverged", "point"]),
+    // The same step fails early by its energy balance, before it diverges.
+    c("dynamics_forced_unstable_loses_its_energy_balance", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\n")], None, 3, &["energy balance at step 10", "dynamics.balance_tolerance"]),
     c("dynamics_safety_factor_above_one", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nsafety_factor = 1.5\n")], None, 2, &["dynamics.safety_factor", "(0, 1]"]),
     c("dynamics_record_every_zero", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nrecord_every = 0\n")], None, 2, &["dynamics.record_every"]),
     c("dynamics_negative_damping", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = -1.0\n")], None, 2, &["dynamics.damping"]),
@@ -415,6 +417,10 @@ const CASES: &[Case] = &[
     // so the bound is 1e250 / 1e3.
     c("max_load_factor_overflows_the_states", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e300\n")], None, 2, &["quasi_static.max_load_factor", "at most 1.000e247"]),
     c("max_load_factor_1e308", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e308\nstrategy = \"all\"\n")], None, 2, &["quasi_static.max_load_factor", "at most"]),
+    // Damping beyond the damped Verlet's bound α Δt ≤ 2 (derived in src/drivers/dynamics).
+    c("dynamics_damping_above_the_verlet_bound", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = 1e12\n")], None, 2, &["dynamics.damping", "α Δt", "2/Δt"]),
+    c("dynamics_balance_tolerance_not_positive", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nbalance_tolerance = 0.0\n")], None, 2, &["dynamics.balance_tolerance", "positive"]),
+    c("dynamics_energy_balance_above_tolerance", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 50\nbalance_tolerance = 1e-15\n")], None, 3, &["energy balance", "dynamics.balance_tolerance"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

@@ -171,3 +171,38 @@ fn point_writers_refuse_non_finite_numbers() {
         assert!(!path.exists());
     }
 }
+
+/// The base plate as a dynamics scene (density 1000 kg/m³) with `extra` in `[dynamics]`.
+fn dynamics_scene(extra: &str) -> String {
+    BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ndensity = 1000.0",
+    ) + &format!("\n[dynamics]\nsteps = 40\n{extra}\n")
+}
+
+/// Item 5: the damped Verlet's bound α Δt ≤ 2 (derived in the module docs of
+/// `src/drivers/dynamics`): 0.95 × 2/Δt runs and keeps its energy balance,
+/// 1.05 × 2/Δt is refused naming `dynamics.damping` and 2/Δt. Δt is the
+/// default step of the same scene, read from an undamped run.
+#[test]
+fn damping_is_bounded_by_the_damped_verlet_step() {
+    let undamped = run("damping-none", &dynamics_scene(""))
+        .summary
+        .expect("runs");
+    let dt = undamped["time_step"].as_f64().expect("time_step");
+    let below = run(
+        "damping-below",
+        &dynamics_scene(&format!("damping = {:e}", 0.95 * 2.0 / dt)),
+    );
+    assert_eq!(below.code, Some(0), "{}", below.stderr);
+    let above = run(
+        "damping-above",
+        &dynamics_scene(&format!("damping = {:e}", 1.05 * 2.0 / dt)),
+    );
+    assert_eq!(above.code, Some(2), "{}", above.stderr);
+    assert!(
+        above.stderr.contains("dynamics.damping") && above.stderr.contains("2/Δt"),
+        "{}",
+        above.stderr
+    );
+}
