@@ -421,6 +421,11 @@ const CASES: &[Case] = &[
     c("dynamics_damping_above_the_verlet_bound", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = 1e12\n")], None, 2, &["dynamics.damping", "α Δt", "2/Δt"]),
     c("dynamics_balance_tolerance_not_positive", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nbalance_tolerance = 0.0\n")], None, 2, &["dynamics.balance_tolerance", "positive"]),
     c("dynamics_energy_balance_above_tolerance", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 50\nbalance_tolerance = 1e-15\n")], None, 3, &["energy balance", "dynamics.balance_tolerance"]),
+    // Dynamic relaxation seeks a static equilibrium: a free body is refused before the run.
+    c("relaxation_of_a_free_body", &[Rep(LEFT_BC, ""), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 20000\n")], None, 3, &["is not held", "rotation about z"]),
+    c("check_relaxation_of_a_free_body", &[Check, Rep(LEFT_BC, ""), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 20000\n")], None, 3, &["is not held"]),
+    // A smallest step that no longer changes λ looped for ever; refused (steps 100: at least 1e-10).
+    c("min_step_fraction_below_double_resolution", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\nmax_broken_per_step = 1\nmin_step_fraction = 1e-300\n")], None, 2, &["quasi_static.min_step_fraction", "[1e-10, 1]", "never ends"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

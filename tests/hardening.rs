@@ -7,7 +7,8 @@ mod common;
 
 use common::PLATE_SCENE as BASE;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::Instant;
 
 /// A per-test temporary directory, removed on drop.
 struct TempDir(PathBuf);
@@ -43,14 +44,27 @@ fn run(tag: &str, text: &str) -> Run {
     let scene = dir.0.join("scene.toml");
     std::fs::write(&scene, text).expect("write the scene");
     let out = dir.0.join("out");
-    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dhpd"))
         .arg("run")
         .arg(&scene)
         .arg("--out")
         .arg(&out)
         .current_dir(&dir.0)
-        .output()
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
         .expect("start dhpd");
+    // Every case here ends in well under a second; a run that does not end in
+    // a minute loops.
+    let start = Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if start.elapsed().as_secs() > 60 {
+            let _ = child.kill();
+            panic!("{tag}: dhpd did not end within 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let o = child.wait_with_output().expect("output");
     let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
     let stray: Vec<String> = std::fs::read_dir(&dir.0)
         .unwrap()
@@ -205,4 +219,19 @@ fn damping_is_bounded_by_the_damped_verlet_step() {
         "{}",
         above.stderr
     );
+}
+
+/// Item 7: the stepped strategy with a tie of two bonds, one bond allowed per
+/// step and the smallest step fraction allowed (1e-12 × steps) ends: every
+/// accepted step raises λ. (With 1e-300 it looped for ever; now refused, see
+/// tests/bad_scenes.rs.)
+#[test]
+fn the_stepped_strategy_ends_with_the_smallest_step_allowed() {
+    let text = BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\nfracture_energy = 100.0",
+    ) + "\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\n\
+         max_broken_per_step = 1\nmin_step_fraction = 1e-10\n";
+    let r = run("smallest-step", &text);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
 }

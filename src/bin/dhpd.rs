@@ -67,10 +67,16 @@ fn main() {
 fn check(path: &Path) -> Result<(), Error> {
     let scene = scene::load(path)?;
     if scene.dynamics.is_some() {
-        // An explicit run may have a free body: no rigid-motion check.
+        // An explicit (Verlet) run may have a free body.
         let disc = dhpd::discretization::build(&scene)?;
         Plan::new(&scene, &disc)?;
-        dhpd::assembly::dofs::DofMap::new(&disc, &scene.boundaries)?;
+        let dofs = dhpd::assembly::dofs::DofMap::new(&disc, &scene.boundaries)?;
+        if scene.dynamics.as_ref().map(|d| d.method)
+            == Some(dhpd::scene::DynamicsMethod::Relaxation)
+        {
+            // Relaxation seeks a static equilibrium: the body must be held.
+            dhpd::assembly::rigid_modes::check(&disc, &dofs)?;
+        }
         println!(
             "{}: valid ({} points, {} bonds; explicit dynamics)",
             path.display(),

@@ -109,6 +109,10 @@ pub struct Region {
     pub horizon: HorizonRule,
 }
 
+/// Smallest load step of the stepped fracture strategies, relative to
+/// `max_load_factor` (bounds `quasi_static.min_step_fraction` from below).
+pub const MIN_STEP_RELATIVE: f64 = 1e-12;
+
 /// A validated point file reference.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointFile {
@@ -1001,10 +1005,19 @@ fn fracture_runs(
         count("max_broken_per_step", Some(n), n, usize::MAX)?;
     }
     let min_step_fraction = q.min_step_fraction.unwrap_or(1.0 / 1024.0);
-    if !(min_step_fraction > 0.0 && min_step_fraction <= 1.0) {
+    // The smallest step, min_step_fraction × max_load_factor / steps, must still
+    // change λ in double precision (an ulp of λ ≤ max_load_factor is 2.2e-16 of
+    // it): at least MIN_STEP_RELATIVE of max_load_factor, with room to spare.
+    let lowest = MIN_STEP_RELATIVE * steps as f64;
+    if !(min_step_fraction >= lowest && min_step_fraction <= 1.0) {
         return Err(InputError::new(
             "quasi_static.min_step_fraction",
-            format!("{min_step_fraction} is outside (0, 1]"),
+            format!(
+                "{min_step_fraction} is outside [{lowest:e}, 1]: the smallest step \
+                 (min_step_fraction × max_load_factor / steps) must be at least \
+                 {MIN_STEP_RELATIVE:e} of max_load_factor, or it no longer changes the load \
+                 factor in double precision and the run never ends"
+            ),
         ));
     }
     if let Some(f) = q.stop_after_peak {

@@ -496,6 +496,9 @@ pub fn run(
             Ok(solution)
         }
         DynamicsMethod::Relaxation => {
+            // Relaxation seeks the static equilibrium: a body free to move
+            // rigidly has none (it would run every step), as in a static solve.
+            crate::assembly::rigid_modes::check(&disc, &dofs)?;
             let rows = tangent_row_sums(scene, &disc)?;
             let kernel = builds_kernel(scene, disc)?;
             let steps = match dy.length {

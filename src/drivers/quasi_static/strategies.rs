@@ -80,6 +80,18 @@ impl<M: Model> Run<'_, M> {
                     continue;
                 }
             }
+            // Every accepted step must raise λ (the validated smallest step does):
+            // the loop ends after at most steps / min_step_fraction steps.
+            if target <= load_factor {
+                return Err(crate::error::InputError::new(
+                    "quasi_static.min_step_fraction",
+                    format!(
+                        "a step of {step_size:e} no longer changes the load factor {load_factor:e}; \
+                         give a larger min_step_fraction"
+                    ),
+                )
+                .into());
+            }
             step += 1;
             load_factor = target;
             let first_solve = self.solves.len();
