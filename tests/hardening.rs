@@ -235,3 +235,74 @@ fn the_stepped_strategy_ends_with_the_smallest_step_allowed() {
     let r = run("smallest-step", &text);
     assert_eq!(r.code, Some(0), "{}", r.stderr);
 }
+
+/// Item 6: a displacement-controlled plate (right edge pulled 1 mm) whose
+/// critical stretch 1e-6 is far below its strain (5e-3) breaks apart in its
+/// single step with every reaction zero: the outcome is a separation at step 1,
+/// not "completed" (the body carried the pre-break reactions at λ = 1).
+#[test]
+fn a_body_broken_apart_at_the_first_step_is_reported_separated() {
+    let start = BASE.find("[[loads]]").expect("the base has a load");
+    let end = BASE.find("[[output.profiles]]").expect("and a profile");
+    let text = format!(
+        "{}[[boundary]]\nname = \"right\"\nbox = {{ min = [0.19, 0.0], max = [0.2, 0.1] }}\n\
+         displacement = {{ x = 1e-3 }}\n\n{}\n[quasi_static]\nmax_load_factor = 1.0\n\
+         strategy = \"all\"\nsteps = 1\n",
+        &BASE[..start],
+        &BASE[end..]
+    )
+    .replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ncritical_stretch = 1e-6",
+    );
+    let s = run("separated-at-once", &text).summary.expect("runs");
+    assert_eq!(s["outcome"]["kind"], "separated", "{}", s["outcome"]);
+    assert_eq!(s["outcome"]["detail"]["step"], 1);
+}
+
+/// Item 6: with critical_stretch = 1e-300 the reactions are about 1e-295 N; the
+/// summary's peak is the largest record (from load_displacement.csv, its
+/// magnitude by hypot), not an underflowed 0 N at another step.
+#[test]
+fn tiny_reactions_keep_their_peak() {
+    let text = BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ncritical_stretch = 1e-300",
+    ) + "\n[quasi_static]\nmax_load_factor = 1.0\n";
+    let dir = TempDir::new("tiny-peak");
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.0.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .args([
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("load_displacement.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (x, y, step) = (col("reaction_left_x"), col("reaction_left_y"), col("step"));
+    let (peak_step, peak) = lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .map(|f| {
+            let v = |k: usize| f[k].parse::<f64>().unwrap();
+            (f[step].parse::<u64>().unwrap(), v(x).hypot(v(y)))
+        })
+        .fold((0, 0.0), |best, r| if r.1 > best.1 { r } else { best });
+    assert!(peak > 0.0 && peak < 1e-290, "records: peak {peak:e}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let p = &summary["peaks"][0];
+    let magnitude = p["magnitude"].as_f64().unwrap();
+    assert!(
+        (magnitude / peak - 1.0).abs() < 1e-12,
+        "{magnitude:e} vs {peak:e}"
+    );
+    assert_eq!(p["step"].as_u64().unwrap(), peak_step);
+}

@@ -28,6 +28,13 @@ pub fn norm(a: &[f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// `|a|` without overflow or underflow of the squares (`hypot`), for the
+/// reported forces: a reaction of 1e-295 N keeps its magnitude (`norm` gives 0).
+#[inline]
+pub fn magnitude(a: &[f64; 3]) -> f64 {
+    a[0].hypot(a[1]).hypot(a[2])
+}
+
 /// `a × b`.
 #[inline]
 pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
