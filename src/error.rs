@@ -6,6 +6,7 @@
 //! | 2 | input error: the scene or a point file is invalid (nothing was computed) |
 //! | 3 | numerical failure: the problem is ill-posed or the solver failed |
 //! | 4 | I/O failure while reading inputs or writing results |
+//! | 130, 143 | interrupted by SIGINT, SIGTERM: partial results removed (`output::interrupt`) |
 
 use std::path::PathBuf;
 use thiserror::Error;

@@ -426,6 +426,11 @@ const CASES: &[Case] = &[
     c("check_relaxation_of_a_free_body", &[Check, Rep(LEFT_BC, ""), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 20000\n")], None, 3, &["is not held"]),
     // A smallest step that no longer changes λ looped for ever; refused (steps 100: at least 1e-10).
     c("min_step_fraction_below_double_resolution", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\nmax_broken_per_step = 1\nmin_step_fraction = 1e-300\n")], None, 2, &["quasi_static.min_step_fraction", "[1e-10, 1]", "never ends"]),
+    // Names go into CSV columns and rows: restricted as scene names are, and unique.
+    c("material_name_with_a_comma", &[Rep("[materials.soft]", "[materials.\"so,ft\"]"), Rep("material = \"soft\"", "material = \"so,ft\"")], None, 2, &["materials.so,ft", "letters, digits"]),
+    c("material_name_with_a_newline", &[Rep("[materials.soft]", "[materials.\"so\\nft\"]"), Rep("material = \"soft\"", "material = \"so\\nft\"")], None, 2, &["materials.so", "letters, digits"]),
+    c("probe_duplicate_name", &[Add("\n[[output.probes]]\nname = \"tip\"\nat = [0.195, 0.05]\n[[output.probes]]\nname = \"tip\"\nat = [0.105, 0.05]\n")], None, 2, &["output.probes[1].name", "used twice"]),
+    c("no_fail_box_selects_no_point", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[[fracture.no_fail]]\nbox = { min = [0.5, 0.5], max = [0.6, 0.6] }\n")], None, 2, &["fracture.no_fail[0].box", "selects no point"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

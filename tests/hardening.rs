@@ -306,3 +306,85 @@ fn tiny_reactions_keep_their_peak() {
     );
     assert_eq!(p["step"].as_u64().unwrap(), peak_step);
 }
+
+/// Item 8: SIGINT and SIGTERM during a dynamics run that is writing its step
+/// files stop it with exit 130 / 143, removing the staging folder: nothing is
+/// left beside `--out`.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_nothing_behind() {
+    for (signal, code) in [("-INT", 130), ("-TERM", 143)] {
+        let dir = TempDir::new(&format!("signal{signal}"));
+        let scene = dir.0.join("scene.toml");
+        let text = dynamics_scene("").replace("steps = 40", "steps = 5000000\nrecord_every = 1000")
+            + "\n[output]\nevery = 20000\n";
+        std::fs::write(&scene, text).unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+            .arg("run")
+            .arg(&scene)
+            .arg("--out")
+            .arg(dir.0.join("out"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let staging = dir.0.join(format!(".out.partial-{}", child.id()));
+        let start = Instant::now();
+        // Wait until the run has written step files into its staging folder.
+        while std::fs::read_dir(&staging).map_or(0, |d| d.count()) < 2 {
+            assert!(start.elapsed().as_secs() < 60, "no step file written");
+            assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let killed = Command::new("kill")
+            .arg(signal)
+            .arg(child.id().to_string())
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let o = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(code), "{stderr}");
+        assert!(stderr.contains("interrupted"), "{stderr}");
+        let left: Vec<_> = std::fs::read_dir(&dir.0)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "scene.toml")
+            .collect();
+        assert!(left.is_empty(), "{signal}: left behind {left:?}");
+    }
+}
+
+/// Item 8: a staging folder of a process that no longer exists (a run killed
+/// outright) is removed by the next run writing beside the same output; one
+/// of a living process (this test's) is kept.
+#[cfg(unix)]
+#[test]
+fn the_next_run_clears_stale_staging_folders() {
+    let dir = TempDir::new("stale");
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let stale = dir.0.join(format!(".out.partial-{dead}"));
+    let living = dir.0.join(format!(".out.partial-{}", std::process::id()));
+    for d in [&stale, &living] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("step_000000.vtu"), "partial").unwrap();
+    }
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, BASE).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.0.join("out"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!stale.exists(), "the dead process's staging folder is left");
+    assert!(
+        living.exists(),
+        "a living process's staging folder was removed"
+    );
+}

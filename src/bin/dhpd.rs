@@ -7,7 +7,8 @@
 //! dhpd check SCENE              validate a scene (and its point files) only
 //! ```
 //!
-//! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error.
+//! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error,
+//! 130 / 143 interrupted by SIGINT / SIGTERM (partial results removed).
 
 use clap::{Parser, Subcommand};
 use dhpd::drivers::{dynamics, quasi_static, static_solve};
@@ -44,6 +45,8 @@ enum Command {
 }
 
 fn main() {
+    // Before any thread starts: SIGINT and SIGTERM remove the partial results.
+    output::interrupt::install();
     let cli = Cli::parse();
     let result = match cli.command {
         None => run_default(),

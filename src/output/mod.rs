@@ -5,6 +5,7 @@
 
 pub mod csv;
 pub mod dynamics;
+pub mod interrupt;
 pub mod matrix_market;
 pub mod series;
 pub mod summary;
@@ -29,7 +30,8 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Selects the profile and probe points; a profile that selects no point is an input error.
+    /// Selects the profile and probe points; a profile, or a `fracture.no_fail`
+    /// box, that selects no point is an input error.
     pub fn new(scene: &Scene, disc: &Discretization) -> Result<Self, InputError> {
         let x = &disc.points.x;
         let mut profiles = Vec::new();
@@ -78,6 +80,17 @@ impl Plan {
                 ));
             }
             probes.push((p.name.clone(), nearest));
+        }
+        // A no-fail box that holds no point protects nothing, as a boundary or
+        // load box that selects nothing does nothing: both are input errors.
+        for (k, b) in scene.fracture.no_fail.iter().enumerate() {
+            if !x.iter().any(|p| b.contains(p)) {
+                return Err(InputError::new(
+                    format!("fracture.no_fail[{k}].box"),
+                    "selects no point; give a box that holds the points whose bonds must not \
+                     break",
+                ));
+            }
         }
         Ok(Plan { profiles, probes })
     }
@@ -192,10 +205,13 @@ fn remove_created(created: &[PathBuf]) {
 impl Staging {
     /// Creates the temporary directory next to `dir`.
     pub fn new(dir: &Path) -> Result<Self, Error> {
+        interrupt::clear_stale(dir);
         let tmp = temporary_sibling(dir);
         let created = missing_ancestors(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
+        interrupt::register(&tmp);
         if let Err(e) = std::fs::create_dir_all(&tmp) {
+            interrupt::unregister(&tmp);
             remove_created(&created);
             return Err(Error::io(&tmp, e));
         }
@@ -228,6 +244,7 @@ impl Staging {
             return Err(Error::io(&dir, e));
         }
         self.committed = true;
+        interrupt::unregister(&self.tmp);
         if replacing {
             let _ = std::fs::remove_dir_all(&old);
         }
@@ -239,6 +256,7 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.tmp);
+            interrupt::unregister(&self.tmp);
             remove_created(&self.created);
         }
     }

@@ -812,6 +812,8 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
         .iter()
         .map(|(name, m)| {
             let f = format!("materials.{name}");
+            // The name goes into points.csv and messages: no comma, quote or newline.
+            self::name(&f, name)?;
             positive(&format!("{f}.youngs_modulus"), m.youngs_modulus)?;
             if let Some(nu) = m.poisson_ratio {
                 let plane_stress = spec.model.dimension == Dimension::PlaneStress;
@@ -1365,6 +1367,15 @@ fn output(o: &OutputSpec, d: usize) -> Result<OutputSettings, InputError> {
     for (k, p) in o.probes.iter().enumerate() {
         let f = format!("output.probes[{k}]");
         name(&format!("{f}.name"), &p.name)?;
+        if o.probes[..k].iter().any(|q| q.name == p.name) {
+            return Err(InputError::new(
+                format!("{f}.name"),
+                format!(
+                    "\"{}\" is used twice (each probe is a column of probes.csv)",
+                    p.name
+                ),
+            ));
+        }
         probes.push(Probe {
             name: p.name.clone(),
             at: coords(&format!("{f}.at"), &p.at, d)?,
