@@ -6,6 +6,7 @@
 //! | 2 | input error: the scene or a point file is invalid (nothing was computed) |
 //! | 3 | numerical failure: the problem is ill-posed or the solver failed |
 //! | 4 | I/O failure while reading inputs or writing results |
+//! | 130, 143 | interrupted by SIGINT, SIGTERM: partial results removed (`output::interrupt`) |
 
 use std::path::PathBuf;
 use thiserror::Error;
@@ -134,6 +135,21 @@ pub enum NumericalError {
         time: f64,
         point: usize,
         position: [f64; 3],
+    },
+    /// An explicit run lost its energy balance.
+    #[error(
+        "the explicit run lost its energy balance at step {step} (t = {time:e} s): the error \
+         E_kin + E_strain + E_broken + E_damping − W_ext − E_0 is {error:.3e} of the largest \
+         energy, above dynamics.balance_tolerance = {tolerance:e}; the time step is too large \
+         (forced above the stable one?) or the forces are not the gradient of an energy (the \
+         shear model with heavy breakage, the traditional horizons); raise \
+         dynamics.balance_tolerance to accept the run"
+    )]
+    EnergyBalance {
+        step: usize,
+        time: f64,
+        error: f64,
+        tolerance: f64,
     },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]

@@ -97,6 +97,20 @@ const MESH_STRIP: &str = concat!(
     "[[loads]]\nname = \"pull\"\nkind = \"traction\"\ngroup = \"right\"\nvalue = [1.0e6, 0.0]\n"
 );
 
+/// The strip mesh (0 ≤ x ≤ 1, 0 ≤ y ≤ 0.1) as a second body of one material.
+const STRIP_MESH: &str = concat!(
+    "\n[[meshes]]\npath = \"",
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/plate_with_hole/gmsh/bimaterial_strip.msh\"\nmaterial = \"soft\"\n"
+);
+
+/// The triangle mesh of the plate with a hole (|x|, |y| ≤ 0.5) as a second body.
+const HOLE_MESH: &str = concat!(
+    "\n[[meshes]]\npath = \"",
+    env!("CARGO_MANIFEST_DIR"),
+    "/validation/plate_with_hole/gmsh/plate_hole_tri_h0.02.msh\"\nmaterial = \"soft\"\n"
+);
+
 /// The strip mesh as an arbitrary file `pts.xyz` next to the scene.
 const MESH_PTS: Edit = Rep("/validation/plate_with_hole/gmsh/bimaterial_strip.msh", "");
 
@@ -346,7 +360,9 @@ const CASES: &[Case] = &[
     c("dynamics_without_length", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsafety_factor = 0.5\n")], None, 2, &["dynamics", "steps or end_time"]),
     c("dynamics_steps_and_end_time", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nend_time = 1.0\n")], None, 2, &["dynamics.end_time", "not both"]),
     c("dynamics_time_step_above_stable", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ntime_step = 1.0\n")], None, 2, &["dynamics.time_step", "stable time step"]),
-    c("dynamics_forced_unstable_diverges", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\n")], None, 3, &["diverged", "point"]),
+    c("dynamics_forced_unstable_diverges", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\nbalance_tolerance = inf\n")], None, 3, &["diverged", "point"]),
+    // The same step fails early by its energy balance, before it diverges.
+    c("dynamics_forced_unstable_loses_its_energy_balance", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\n")], None, 3, &["energy balance at step 10", "dynamics.balance_tolerance"]),
     c("dynamics_safety_factor_above_one", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nsafety_factor = 1.5\n")], None, 2, &["dynamics.safety_factor", "(0, 1]"]),
     c("dynamics_record_every_zero", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nrecord_every = 0\n")], None, 2, &["dynamics.record_every"]),
     c("dynamics_negative_damping", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = -1.0\n")], None, 2, &["dynamics.damping"]),
@@ -387,6 +403,34 @@ const CASES: &[Case] = &[
     c("mesh_file_missing", &[Whole(MESH_STRIP), MESH_PTS, Rep(concat!(env!("CARGO_MANIFEST_DIR"), "\""), "missing.msh\"")], None, 4, &["missing.msh"]),
     c("mesh_3d_read_as_2d", &[Whole(MESH_STRIP), Rep("bimaterial_strip.msh", "cube_tet_h0.25.msh"), Rep("groups = { soft = \"soft\", stiff = \"stiff\" }", "material = \"soft\"")], None, 2, &["meshes[0].path", "3D elements"]),
     c("mesh_in_1d", &[Whole(MESH_STRIP), Rep("plane_stress", "1d")], None, 2, &["meshes[0]", "2D or 3D"]),
+    // --- hardening round 3 (issue 17) ---
+    // `face` shares a traction by grid spacing: on a triangle mesh it gave 1.414 × the force.
+    c("traction_face_on_a_mesh", &[Whole(MESH_STRIP), Rep("group = \"right\"", "face = \"+x\"")], None, 2, &["loads[0].face", "meshes[0] (element", "`group`"]),
+    c("traction_face_on_a_point_file", &[Add(PF), Rep("box = { min = [0.19, 0.0], max = [0.2, 0.1] }\nvalue", "value")], Some(ROWS_OK), 2, &["loads[0].face", "point_files[0] (line 2)", "regions"]),
+    // Bodies of different sources covering the same space would double the material.
+    c("mesh_overlaps_a_region", &[Add(STRIP_MESH)], None, 2, &["meshes[0]", "inside regions[0].box", "must not overlap"]),
+    c("point_file_inside_a_region", &[Add(PF)], Some("0.1 0.05 1e-6\n"), 2, &["point_files[0]", "line 1", "inside regions[0].box"]),
+    c("point_file_inside_a_mesh", &[Whole(MESH_STRIP), Add(PF)], Some("0.615 0.005 1e-6\n"), 2, &["point_files[0]", "line 1", "in the cell of meshes[0]"]),
+    c("two_meshes_overlap", &[Whole(MESH_STRIP), Add(HOLE_MESH)], None, 2, &["meshes[0]", "in the cell of meshes[1]"]),
+    // A load factor whose states overflow is refused after the first solve, naming it:
+    // the largest unit quantity is the clamp's reaction, 1e6 Pa × 0.1 m × 0.01 m = 1e3 N,
+    // so the bound is 1e250 / 1e3.
+    c("max_load_factor_overflows_the_states", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e300\n")], None, 2, &["quasi_static.max_load_factor", "at most 1.000e247"]),
+    c("max_load_factor_1e308", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1e308\nstrategy = \"all\"\n")], None, 2, &["quasi_static.max_load_factor", "at most"]),
+    // Damping beyond the damped Verlet's bound α Δt ≤ 2 (derived in src/drivers/dynamics).
+    c("dynamics_damping_above_the_verlet_bound", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\ndamping = 1e12\n")], None, 2, &["dynamics.damping", "α Δt", "2/Δt"]),
+    c("dynamics_balance_tolerance_not_positive", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 5\nbalance_tolerance = 0.0\n")], None, 2, &["dynamics.balance_tolerance", "positive"]),
+    c("dynamics_energy_balance_above_tolerance", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 50\nbalance_tolerance = 1e-15\n")], None, 3, &["energy balance", "dynamics.balance_tolerance"]),
+    // Dynamic relaxation seeks a static equilibrium: a free body is refused before the run.
+    c("relaxation_of_a_free_body", &[Rep(LEFT_BC, ""), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 20000\n")], None, 3, &["is not held", "rotation about z"]),
+    c("check_relaxation_of_a_free_body", &[Check, Rep(LEFT_BC, ""), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 20000\n")], None, 3, &["is not held"]),
+    // A smallest step that no longer changes λ looped for ever; refused (steps 100: at least 1e-10).
+    c("min_step_fraction_below_double_resolution", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add("\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\nmax_broken_per_step = 1\nmin_step_fraction = 1e-300\n")], None, 2, &["quasi_static.min_step_fraction", "[1e-10, 1]", "never ends"]),
+    // Names go into CSV columns and rows: restricted as scene names are, and unique.
+    c("material_name_with_a_comma", &[Rep("[materials.soft]", "[materials.\"so,ft\"]"), Rep("material = \"soft\"", "material = \"so,ft\"")], None, 2, &["materials.so,ft", "letters, digits"]),
+    c("material_name_with_a_newline", &[Rep("[materials.soft]", "[materials.\"so\\nft\"]"), Rep("material = \"soft\"", "material = \"so\\nft\"")], None, 2, &["materials.so", "letters, digits"]),
+    c("probe_duplicate_name", &[Add("\n[[output.probes]]\nname = \"tip\"\nat = [0.195, 0.05]\n[[output.probes]]\nname = \"tip\"\nat = [0.105, 0.05]\n")], None, 2, &["output.probes[1].name", "used twice"]),
+    c("no_fail_box_selects_no_point", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[[fracture.no_fail]]\nbox = { min = [0.5, 0.5], max = [0.6, 0.6] }\n")], None, 2, &["fracture.no_fail[0].box", "selects no point"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
 
 ];

@@ -8,10 +8,15 @@
 //! the points whose coordinate `s·x_a` lies within half their spacing of the
 //! largest one among the selected points; each gets `t × V_i / h_i` (its share of
 //! the face area, `V_i/h_i` with `h_i` its spacing), so the total force is `t`
-//! times the face area covered by that layer. A body force `b` gives `b V_i`.
+//! times the face area covered by that layer. That share tiles the face only on
+//! a grid: the layer of a mesh or point file has cells of any shape (a structured
+//! triangle mesh of a 0.1 m square gets 1.414 × the force), so a face whose layer
+//! holds a point of `meshes` or `point_files` is refused, naming `group` (the
+//! mesh's boundary facets, exact). A body force `b` gives `b V_i`.
 
 use crate::discretization::{groups, Discretization};
 use crate::error::InputError;
+use crate::geometry::grid::Source;
 use crate::scene::{Load, LoadTarget, Selection};
 
 /// The total force each load applies (for the summary).
@@ -85,17 +90,33 @@ pub fn external_forces(
                     .iter()
                     .map(|&i| sign * points.x[i][axis])
                     .fold(f64::NEG_INFINITY, f64::max);
-                for &i in &selected {
-                    if sign * points.x[i][axis] >= outer - 0.5 * points.spacing[i] {
-                        let share = points.volume[i] / points.spacing[i];
-                        for c in 0..d {
-                            let fc = load.value[c] * share;
-                            f[i][c] += fc;
-                            total[c] += fc;
-                        }
-                        finite(k, &f[i], i)?;
-                        count += 1;
+                let layer = selected
+                    .iter()
+                    .copied()
+                    .filter(|&i| sign * points.x[i][axis] >= outer - 0.5 * points.spacing[i]);
+                for i in layer {
+                    if !matches!(points.source[i], Source::Region(_)) {
+                        return Err(InputError::new(
+                            format!("loads[{k}].face"),
+                            format!(
+                                "\"{}\" would load point {i} (x = {:?}) of {}: `face` shares \
+                                 the traction by grid spacing, exact only on the points of \
+                                 `regions` (an unstructured point set's layer does not tile the \
+                                 face); load a mesh through its boundary group with `group` \
+                                 instead of `face` (the facets' area, exact), or restrict `box` \
+                                 to region points",
+                                load.name, points.x[i], points.source[i]
+                            ),
+                        ));
                     }
+                    let share = points.volume[i] / points.spacing[i];
+                    for c in 0..d {
+                        let fc = load.value[c] * share;
+                        f[i][c] += fc;
+                        total[c] += fc;
+                    }
+                    finite(k, &f[i], i)?;
+                    count += 1;
                 }
             }
         }

@@ -7,7 +7,8 @@
 //! dhpd check SCENE              validate a scene (and its point files) only
 //! ```
 //!
-//! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error.
+//! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error,
+//! 130 / 143 interrupted by SIGINT / SIGTERM (partial results removed).
 
 use clap::{Parser, Subcommand};
 use dhpd::drivers::{dynamics, quasi_static, static_solve};
@@ -44,6 +45,8 @@ enum Command {
 }
 
 fn main() {
+    // Before any thread starts: SIGINT and SIGTERM remove the partial results.
+    output::interrupt::install();
     let cli = Cli::parse();
     let result = match cli.command {
         None => run_default(),
@@ -67,10 +70,16 @@ fn main() {
 fn check(path: &Path) -> Result<(), Error> {
     let scene = scene::load(path)?;
     if scene.dynamics.is_some() {
-        // An explicit run may have a free body: no rigid-motion check.
+        // An explicit (Verlet) run may have a free body.
         let disc = dhpd::discretization::build(&scene)?;
         Plan::new(&scene, &disc)?;
-        dhpd::assembly::dofs::DofMap::new(&disc, &scene.boundaries)?;
+        let dofs = dhpd::assembly::dofs::DofMap::new(&disc, &scene.boundaries)?;
+        if scene.dynamics.as_ref().map(|d| d.method)
+            == Some(dhpd::scene::DynamicsMethod::Relaxation)
+        {
+            // Relaxation seeks a static equilibrium: the body must be held.
+            dhpd::assembly::rigid_modes::check(&disc, &dofs)?;
+        }
         println!(
             "{}: valid ({} points, {} bonds; explicit dynamics)",
             path.display(),
@@ -220,7 +229,8 @@ fn print_fracture_report(scene: &Scene, s: &quasi_static::QuasiStaticSolution, d
     );
     for (k, name) in s.set_names.iter().enumerate() {
         if let Some(peak) = s.records.iter().max_by(|a, b| {
-            dhpd::geometry::norm(&a.reactions[k]).total_cmp(&dhpd::geometry::norm(&b.reactions[k]))
+            dhpd::geometry::magnitude(&a.reactions[k])
+                .total_cmp(&dhpd::geometry::magnitude(&b.reactions[k]))
         }) {
             let f = peak.reactions[k];
             println!(

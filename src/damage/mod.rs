@@ -73,6 +73,7 @@
 //! over the bonds it owns.
 
 use crate::discretization::Discretization;
+use crate::geometry::grid::Source;
 use crate::model::bond_based;
 use crate::model::Model;
 use crate::scene::{
@@ -225,7 +226,7 @@ fn dissipation_factor(
     i: usize,
     m: f64,
 ) -> Result<f64, Uncalibrated> {
-    if disc.points.from_mesh[i] {
+    if matches!(disc.points.source[i], Source::Mesh { .. }) {
         return Err(Uncalibrated::Irregular);
     }
     match scene.model {

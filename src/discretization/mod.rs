@@ -13,6 +13,7 @@
 
 pub mod groups;
 mod neighbours;
+mod overlap;
 pub mod partial_volume;
 
 use crate::error::{Error, InputError, NumericalError};
@@ -36,8 +37,8 @@ pub struct Points {
     pub horizon: Vec<f64>,
     /// Material index into the scene's materials.
     pub material: Vec<u32>,
-    /// Whether the point is an element of a Gmsh mesh (an irregular cloud).
-    pub from_mesh: Vec<bool>,
+    /// The scene item each point comes from (a region, a point-file line, a mesh cell).
+    pub source: Vec<Source>,
 }
 
 impl Points {
@@ -58,10 +59,7 @@ impl Points {
             spacing: raw.iter().map(|p| p.spacing).collect(),
             horizon: raw.iter().map(|p| p.horizon).collect(),
             material: raw.iter().map(|p| p.material).collect(),
-            from_mesh: raw
-                .iter()
-                .map(|p| matches!(p.source, Source::Mesh { .. }))
-                .collect(),
+            source: raw.iter().map(|p| p.source).collect(),
         }
     }
 }
@@ -178,6 +176,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
     reject_duplicates(&raw)?;
+    overlap::reject_overlaps(&raw, &scene.regions, d)?;
     if scene.horizons == HorizonMode::Constant {
         let largest = raw.iter().map(|p| p.horizon).fold(0.0, f64::max);
         raw.iter_mut().for_each(|p| p.horizon = largest);

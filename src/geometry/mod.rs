@@ -28,6 +28,13 @@ pub fn norm(a: &[f64; 3]) -> f64 {
     dot(a, a).sqrt()
 }
 
+/// `|a|` without overflow or underflow of the squares (`hypot`), for the
+/// reported forces: a reaction of 1e-295 N keeps its magnitude (`norm` gives 0).
+#[inline]
+pub fn magnitude(a: &[f64; 3]) -> f64 {
+    a[0].hypot(a[1]).hypot(a[2])
+}
+
 /// `a × b`.
 #[inline]
 pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
@@ -41,8 +48,15 @@ pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
 /// Relative tolerance of the crossing test at the crack's own edges.
 const EDGE_TOLERANCE: f64 = 1e-9;
 
-/// Whether the open segment `p`-`q` crosses the crack. Segments that only touch
-/// the crack (an end point on it) do not cross; place cracks between point rows.
+/// Whether the segment `p`-`q` crosses the crack.
+///
+/// A point on the crack's line (2D) or plane (3D), to within a relative 1e-9 of
+/// the bond's length, counts as lying on its positive side: left of the
+/// direction `from → to` (2D), along `edge1 × edge2` (3D). A bond that ends on
+/// the crack is thus cut exactly as if the crack passed an infinitesimal
+/// distance to the other side of its end point, so the bonds (and the answer)
+/// do not jump when a crack is drawn through a row of points instead of 1e-8 m
+/// beside it; a bond lying in the crack is not cut.
 /// The crack itself is closed: a segment through its end point (2D) or across
 /// its edge (3D), to within a relative 1e-9, crosses it, so that mirror-image
 /// bonds through a crack tip are treated alike whatever the round-off.
@@ -56,7 +70,8 @@ pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
             let (o3, o4) = (orient(p, q, from), orient(p, q, to));
             let tol = EDGE_TOLERANCE * norm(&sub(q, p)) * norm(&sub(to, from));
             let on_line = |o: f64| o.abs() <= tol;
-            o1 * o2 < 0.0 && (o3 * o4 < 0.0 || on_line(o3) || on_line(o4))
+            let left = |o: f64| o > -tol;
+            left(o1) != left(o2) && (o3 * o4 < 0.0 || on_line(o3) || on_line(o4))
         }
         Crack::Parallelogram {
             origin,
@@ -65,7 +80,8 @@ pub fn crosses(crack: &Crack, p: &[f64; 3], q: &[f64; 3]) -> bool {
         } => {
             let n = cross(edge1, edge2);
             let (sp, sq) = (dot(&n, &sub(p, origin)), dot(&n, &sub(q, origin)));
-            if sp * sq >= 0.0 {
+            let tol = EDGE_TOLERANCE * norm(&n) * norm(&sub(q, p));
+            if (sp > -tol) == (sq > -tol) {
                 return false;
             }
             let t = sp / (sp - sq);
@@ -98,7 +114,19 @@ mod tests {
         };
         assert!(crosses(&c, &[0.5, -0.1, 0.0], &[0.5, 0.1, 0.0]));
         assert!(!crosses(&c, &[1.5, -0.1, 0.0], &[1.5, 0.1, 0.0]));
+        // An end on the crack counts as left of from → to (+y): cut towards -y only,
+        // as by the crack 1e-12 m below; a bond along the crack is not cut.
         assert!(!crosses(&c, &[0.5, 0.0, 0.0], &[0.5, 0.1, 0.0]));
+        assert!(crosses(&c, &[0.5, 0.0, 0.0], &[0.5, -0.1, 0.0]));
+        assert!(!crosses(&c, &[0.2, 0.0, 0.0], &[0.4, 0.0, 0.0]));
+        let below = Crack::Segment {
+            from: [0.0, -1e-12, 0.0],
+            to: [1.0, -1e-12, 0.0],
+        };
+        for q in [[0.5, 0.1, 0.0], [0.5, -0.1, 0.0], [0.6, -0.05, 0.0]] {
+            let p = [0.5, 0.0, 0.0];
+            assert_eq!(crosses(&c, &p, &q), crosses(&below, &p, &q), "{q:?}");
+        }
         // Through the tip, from either side and with round-off either way: cut.
         for eps in [0.0, 1e-17, -1e-17] {
             assert!(crosses(&c, &[0.9, -0.1 + eps, 0.0], &[1.1, 0.1, 0.0]));
@@ -116,5 +144,8 @@ mod tests {
         assert!(crosses(&c, &[0.5, 0.5, -0.1], &[0.5, 0.5, 0.1]));
         assert!(!crosses(&c, &[1.5, 0.5, -0.1], &[1.5, 0.5, 0.1]));
         assert!(!crosses(&c, &[0.5, 0.5, 0.1], &[0.5, 0.5, 0.2]));
+        // An end in the plane counts as on the side of edge1 × edge2 (+z).
+        assert!(crosses(&c, &[0.5, 0.5, 0.0], &[0.5, 0.5, -0.1]));
+        assert!(!crosses(&c, &[0.5, 0.5, 0.0], &[0.5, 0.5, 0.1]));
     }
 }

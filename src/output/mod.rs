@@ -5,6 +5,7 @@
 
 pub mod csv;
 pub mod dynamics;
+pub mod interrupt;
 pub mod matrix_market;
 pub mod series;
 pub mod summary;
@@ -13,7 +14,7 @@ pub mod vtu;
 use crate::discretization::Discretization;
 use crate::drivers::quasi_static::QuasiStaticSolution;
 use crate::drivers::static_solve::StaticSolution;
-use crate::error::{Error, InputError};
+use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::{dot, norm, sub};
 use crate::model::Block;
 use crate::scene::Scene;
@@ -29,7 +30,8 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Selects the profile and probe points; a profile that selects no point is an input error.
+    /// Selects the profile and probe points; a profile, or a `fracture.no_fail`
+    /// box, that selects no point is an input error.
     pub fn new(scene: &Scene, disc: &Discretization) -> Result<Self, InputError> {
         let x = &disc.points.x;
         let mut profiles = Vec::new();
@@ -79,6 +81,17 @@ impl Plan {
             }
             probes.push((p.name.clone(), nearest));
         }
+        // A no-fail box that holds no point protects nothing, as a boundary or
+        // load box that selects nothing does nothing: both are input errors.
+        for (k, b) in scene.fracture.no_fail.iter().enumerate() {
+            if !x.iter().any(|p| b.contains(p)) {
+                return Err(InputError::new(
+                    format!("fracture.no_fail[{k}].box"),
+                    "selects no point; give a box that holds the points whose bonds must not \
+                     break",
+                ));
+            }
+        }
         Ok(Plan { profiles, probes })
     }
 }
@@ -95,6 +108,57 @@ pub struct PointData<'a> {
     pub stress: Option<&'a [Block]>,
     /// Damage per point, for fracture runs.
     pub damage: Option<&'a [f64]>,
+}
+
+impl PointData<'_> {
+    /// Refuses to write `file` when a number it would hold is not finite,
+    /// naming the field and the first such point: every writer of point data
+    /// calls this, so no `NaN` or `inf` reaches a result.
+    pub fn ensure_finite(&self, file: &Path) -> Result<(), Error> {
+        let p = &self.disc.points;
+        let vectors = [
+            ("position", Some(&p.x[..])),
+            ("displacement", Some(self.u)),
+            ("velocity", self.velocity),
+        ];
+        let mut bad = vectors
+            .iter()
+            .filter_map(|(name, v)| Some((*name, (*v)?)))
+            .find_map(|(name, v)| {
+                v.iter()
+                    .position(|x| x.iter().any(|c| !c.is_finite()))
+                    .map(|i| (name, i))
+            });
+        let scalars = [
+            ("volume", Some(&p.volume[..])),
+            ("spacing", Some(&p.spacing[..])),
+            ("horizon", Some(&p.horizon[..])),
+            ("damage", self.damage),
+        ];
+        bad = bad.or_else(|| {
+            scalars
+                .iter()
+                .filter_map(|(name, v)| Some((*name, (*v)?)))
+                .find_map(|(name, v)| v.iter().position(|c| !c.is_finite()).map(|i| (name, i)))
+        });
+        bad = bad.or_else(|| {
+            self.stress?
+                .iter()
+                .position(|b| b.iter().flatten().any(|c| !c.is_finite()))
+                .map(|i| ("stress", i))
+        });
+        match bad {
+            None => Ok(()),
+            Some((name, i)) => Err(NumericalError::NonFinite {
+                what: format!(
+                    "the {name} of point {i} (x = {:?}) to be written to {}; nothing was written",
+                    p.x[i],
+                    file.display()
+                ),
+            }
+            .into()),
+        }
+    }
 }
 
 impl StaticSolution {
@@ -141,10 +205,13 @@ fn remove_created(created: &[PathBuf]) {
 impl Staging {
     /// Creates the temporary directory next to `dir`.
     pub fn new(dir: &Path) -> Result<Self, Error> {
+        interrupt::clear_stale(dir);
         let tmp = temporary_sibling(dir);
         let created = missing_ancestors(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
+        interrupt::register(&tmp);
         if let Err(e) = std::fs::create_dir_all(&tmp) {
+            interrupt::unregister(&tmp);
             remove_created(&created);
             return Err(Error::io(&tmp, e));
         }
@@ -177,6 +244,7 @@ impl Staging {
             return Err(Error::io(&dir, e));
         }
         self.committed = true;
+        interrupt::unregister(&self.tmp);
         if replacing {
             let _ = std::fs::remove_dir_all(&old);
         }
@@ -188,6 +256,7 @@ impl Drop for Staging {
     fn drop(&mut self) {
         if !self.committed {
             let _ = std::fs::remove_dir_all(&self.tmp);
+            interrupt::unregister(&self.tmp);
             remove_created(&self.created);
         }
     }
@@ -200,6 +269,7 @@ pub(crate) fn write_points(
     plan: &Plan,
     data: &PointData,
 ) -> Result<(), Error> {
+    data.ensure_finite(dir)?;
     if scene.output.vtu {
         vtu::write(&dir.join("points.vtu"), data)?;
     }

@@ -183,13 +183,13 @@ pub fn write_quasi_static(
                 .records
                 .iter()
                 .max_by(|a, b| {
-                    crate::geometry::norm(&a.reactions[k])
-                        .total_cmp(&crate::geometry::norm(&b.reactions[k]))
+                    crate::geometry::magnitude(&a.reactions[k])
+                        .total_cmp(&crate::geometry::magnitude(&b.reactions[k]))
                 })
                 .expect("a run has its initial record");
             Peak {
                 name: name.clone(),
-                magnitude: crate::geometry::norm(&best.reactions[k]),
+                magnitude: crate::geometry::magnitude(&best.reactions[k]),
                 force: best.reactions[k],
                 step: best.step,
                 load_factor: best.load_factor,

@@ -123,6 +123,7 @@ fn vectors(v: &[[f64; 3]]) -> Values {
 
 /// Writes one VTU file of the points.
 pub fn write(path: &Path, s: &PointData) -> Result<(), Error> {
+    s.ensure_finite(path)?;
     let p = &s.disc.points;
     let n = p.len();
     let binary = n >= BINARY_FROM;

@@ -461,6 +461,9 @@ pub struct DynamicsSpec {
     pub tolerance: Option<f64>,
     /// Write probes and the energy history every this many steps (default 1).
     pub record_every: Option<usize>,
+    /// Verlet: largest energy-balance error accepted, relative to the largest
+    /// energy of the run (default 0.2; `inf` turns the check off).
+    pub balance_tolerance: Option<f64>,
 }
 
 /// Kind of load.

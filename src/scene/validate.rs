@@ -113,6 +113,10 @@ pub struct Region {
     pub horizon: HorizonRule,
 }
 
+/// Smallest load step of the stepped fracture strategies, relative to
+/// `max_load_factor` (bounds `quasi_static.min_step_fraction` from below).
+pub const MIN_STEP_RELATIVE: f64 = 1e-12;
+
 /// A validated point file reference.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PointFile {
@@ -812,6 +816,8 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
         .iter()
         .map(|(name, m)| {
             let f = format!("materials.{name}");
+            // The name goes into points.csv and messages: no comma, quote or newline.
+            self::name(&f, name)?;
             positive(&format!("{f}.youngs_modulus"), m.youngs_modulus)?;
             if let Some(nu) = m.poisson_ratio {
                 let plane_stress = spec.model.dimension == Dimension::PlaneStress;
@@ -1007,10 +1013,19 @@ fn fracture_runs(
         count("max_broken_per_step", Some(n), n, usize::MAX)?;
     }
     let min_step_fraction = q.min_step_fraction.unwrap_or(1.0 / 1024.0);
-    if !(min_step_fraction > 0.0 && min_step_fraction <= 1.0) {
+    // The smallest step, min_step_fraction × max_load_factor / steps, must still
+    // change λ in double precision (an ulp of λ ≤ max_load_factor is 2.2e-16 of
+    // it): at least MIN_STEP_RELATIVE of max_load_factor, with room to spare.
+    let lowest = MIN_STEP_RELATIVE * steps as f64;
+    if !(min_step_fraction >= lowest && min_step_fraction <= 1.0) {
         return Err(InputError::new(
             "quasi_static.min_step_fraction",
-            format!("{min_step_fraction} is outside (0, 1]"),
+            format!(
+                "{min_step_fraction} is outside [{lowest:e}, 1]: the smallest step \
+                 (min_step_fraction × max_load_factor / steps) must be at least \
+                 {MIN_STEP_RELATIVE:e} of max_load_factor, or it no longer changes the load \
+                 factor in double precision and the run never ends"
+            ),
         ));
     }
     if let Some(f) = q.stop_after_peak {
@@ -1358,6 +1373,15 @@ fn output(o: &OutputSpec, d: usize) -> Result<OutputSettings, InputError> {
     for (k, p) in o.probes.iter().enumerate() {
         let f = format!("output.probes[{k}]");
         name(&format!("{f}.name"), &p.name)?;
+        if o.probes[..k].iter().any(|q| q.name == p.name) {
+            return Err(InputError::new(
+                format!("{f}.name"),
+                format!(
+                    "\"{}\" is used twice (each probe is a column of probes.csv)",
+                    p.name
+                ),
+            ));
+        }
         probes.push(Probe {
             name: p.name.clone(),
             at: coords(&format!("{f}.at"), &p.at, d)?,

@@ -374,6 +374,7 @@ fn run_with<M: Model>(
         start,
     };
     run.solve(0, true)?;
+    run.check_load_factor_range()?;
     timings.numeric_factorization = run.solves[0].report.factor_seconds;
     timings.solve = run.solves[0].report.solve_seconds;
     let initial = run.record(0, StateKind::Initial, 0.0, 0, &[]);
@@ -415,6 +416,47 @@ fn run_with<M: Model>(
         nnz_l,
         final_reactions,
     })
+}
+
+/// Largest displacement, force or reaction any state of the run may reach, in
+/// SI units: outputs and the sums over them need headroom below the largest
+/// double (1.8e308), as the point forces do.
+const MAX_STATE_MAGNITUDE: f64 = 1e250;
+
+impl<M: Model> Run<'_, M> {
+    /// Refuses a `max_load_factor` whose states cannot be represented: every
+    /// state is `λ` times the unit solution (module docs), so `λ_max` times its
+    /// largest displacement, reaction or applied force must stay below
+    /// [`MAX_STATE_MAGNITUDE`].
+    fn check_load_factor_range(&self) -> Result<(), Error> {
+        let unit = self
+            .x
+            .iter()
+            .map(|v| v.abs())
+            .chain(
+                self.unit_reactions
+                    .iter()
+                    .flat_map(|r| r.force.map(f64::abs)),
+            )
+            .chain(self.f_ext.iter().flatten().map(|v| v.abs()))
+            .chain([self.reference_displacement.abs()])
+            .fold(0.0, f64::max);
+        let lambda = self.settings.max_load_factor;
+        if lambda * unit <= MAX_STATE_MAGNITUDE {
+            return Ok(());
+        }
+        Err(crate::error::InputError::new(
+            "quasi_static.max_load_factor",
+            format!(
+                "{lambda:e} times the largest displacement, force or reaction at load factor 1 \
+                 ({unit:.3e}) is {:.3e}, outside the range a result can be written in (above \
+                 {MAX_STATE_MAGNITUDE:e}); give a max_load_factor of at most {:.3e}",
+                lambda * unit,
+                MAX_STATE_MAGNITUDE / unit
+            ),
+        )
+        .into())
+    }
 }
 
 /// Mean diagonal entry of `K` (the stiffness scale given to held unknowns).

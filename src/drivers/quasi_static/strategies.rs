@@ -80,6 +80,18 @@ impl<M: Model> Run<'_, M> {
                     continue;
                 }
             }
+            // Every accepted step must raise λ (the validated smallest step does):
+            // the loop ends after at most steps / min_step_fraction steps.
+            if target <= load_factor {
+                return Err(crate::error::InputError::new(
+                    "quasi_static.min_step_fraction",
+                    format!(
+                        "a step of {step_size:e} no longer changes the load factor {load_factor:e}; \
+                         give a larger min_step_fraction"
+                    ),
+                )
+                .into());
+            }
             step += 1;
             load_factor = target;
             let first_solve = self.solves.len();
@@ -107,6 +119,10 @@ impl<M: Model> Run<'_, M> {
                 let chosen: Vec<usize> = (0..self.ratios.len())
                     .filter(|&b| self.ratios[b] >= threshold.max(1.0))
                     .collect();
+                // The body carried λ R₁ of its bonds before these break: a
+                // first step that breaks it apart still has that peak, and ends
+                // as a separation instead of running to max_load_factor.
+                self.note_peak(load_factor);
                 self.break_bonds(&chosen);
                 resolves += 1;
                 outcome = self.settle(step, load_factor)?;
@@ -159,9 +175,7 @@ impl<M: Model> Run<'_, M> {
             .iter()
             .map(|r| r.force.map(|f| load_factor * f))
             .collect();
-        for r in &reactions {
-            self.peak_reaction = self.peak_reaction.max(crate::geometry::norm(r));
-        }
+        self.note_peak(load_factor);
         use crate::solve::pipeline::Route;
         let routes: Vec<&str> = [Route::Factor, Route::Update, Route::Reuse]
             .into_iter()
@@ -186,6 +200,14 @@ impl<M: Model> Run<'_, M> {
             iterations: solves.iter().map(|s| s.report.iterations).sum(),
             residual: solves.iter().map(|s| s.report.residual).fold(0.0, f64::max),
             wall_time: self.start.elapsed().as_secs_f64(),
+        }
+    }
+
+    /// Raises the peak reaction to that of the current bonds at `load_factor`.
+    fn note_peak(&mut self, load_factor: f64) {
+        for r in &self.unit_reactions {
+            let f = load_factor * crate::geometry::magnitude(&r.force);
+            self.peak_reaction = self.peak_reaction.max(f);
         }
     }
 
@@ -227,7 +249,7 @@ impl<M: Model> Run<'_, M> {
         let largest = self
             .unit_reactions
             .iter()
-            .map(|r| load_factor * crate::geometry::norm(&r.force))
+            .map(|r| load_factor * crate::geometry::magnitude(&r.force))
             .fold(0.0, f64::max);
         (self.peak_reaction > 0.0 && largest < fraction * self.peak_reaction)
             .then_some(Outcome::PastPeak { step })
@@ -238,7 +260,7 @@ impl<M: Model> Run<'_, M> {
         let largest = self
             .unit_reactions
             .iter()
-            .map(|r| crate::geometry::norm(&r.force))
+            .map(|r| crate::geometry::magnitude(&r.force))
             .fold(0.0, f64::max);
         self.peak_reaction > 0.0
             && largest * self.settings.max_load_factor <= SEPARATED * self.peak_reaction

@@ -1,0 +1,390 @@
+//! Regression tests of issue 17 (hardening, round 3) through the real binary:
+//! cases that ran with exit 0 and a wrong or misleading answer. Each run goes in
+//! its own temporary directory; every output file is checked for non-finite
+//! numbers, and nothing may be left beside `--out`.
+
+mod common;
+
+use common::PLATE_SCENE as BASE;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::Instant;
+
+/// A per-test temporary directory, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("dhpd-hardening-{}-{tag}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).expect("create the test directory");
+        TempDir(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// What a run produced.
+struct Run {
+    code: Option<i32>,
+    stderr: String,
+    /// `summary.json`, when the run succeeded.
+    summary: Option<serde_json::Value>,
+}
+
+/// Runs `dhpd run scene.toml --out out` in a fresh directory named `tag`; checks
+/// that no output file holds a non-finite number, that nothing but `out` was
+/// created, and that `out` exists exactly when the run succeeded.
+fn run(tag: &str, text: &str) -> Run {
+    let dir = TempDir::new(tag);
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, text).expect("write the scene");
+    let out = dir.0.join("out");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .current_dir(&dir.0)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("start dhpd");
+    // Every case here ends in well under a second; a run that does not end in
+    // a minute loops.
+    let start = Instant::now();
+    while child.try_wait().expect("wait").is_none() {
+        if start.elapsed().as_secs() > 60 {
+            let _ = child.kill();
+            panic!("{tag}: dhpd did not end within 60 s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let o = child.wait_with_output().expect("output");
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    let stray: Vec<String> = std::fs::read_dir(&dir.0)
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .map(|e| e.file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "scene.toml" && n != "out")
+        .collect();
+    assert!(stray.is_empty(), "{tag}: left behind {stray:?}");
+    assert!(!stderr.contains("panicked"), "{tag}: {stderr}");
+    assert_eq!(
+        out.exists(),
+        o.status.success(),
+        "{tag}: the output directory exists iff the run succeeded; {stderr}"
+    );
+    if out.exists() {
+        assert_all_finite(&out);
+    }
+    let summary = std::fs::read_to_string(out.join("summary.json"))
+        .ok()
+        .map(|t| serde_json::from_str(&t).expect("summary.json parses"));
+    Run {
+        code: o.status.code(),
+        stderr,
+        summary,
+    }
+}
+
+/// No file in `dir` holds `nan` or `inf` as a number (CSV, VTU in ASCII, JSON).
+fn assert_all_finite(dir: &Path) {
+    for entry in std::fs::read_dir(dir).unwrap() {
+        let path = entry.unwrap().path();
+        let Ok(text) = std::fs::read_to_string(&path) else {
+            continue;
+        };
+        let bad = text
+            .split(|c: char| c.is_whitespace() || ",[]{}:\"<>".contains(c))
+            .find(|w| {
+                let w = w.trim_start_matches(['-', '+']).to_ascii_lowercase();
+                w == "nan" || w == "inf" || w == "infinity"
+            });
+        assert!(bad.is_none(), "{} holds {bad:?}", path.display());
+    }
+}
+
+fn bonds(s: &serde_json::Value) -> u64 {
+    s["counts"]["bonds"].as_u64().expect("counts.bonds")
+}
+
+fn max_displacement(s: &serde_json::Value) -> f64 {
+    s["max_displacement"].as_f64().expect("max_displacement")
+}
+
+/// Item 3: a pre-crack drawn exactly through a row of points cuts the bonds that
+/// the same crack an infinitesimal distance to its right cuts (the points on it
+/// count as on its left), so the bonds and the answer are those of the crack
+/// 1e-8 m to the right (reference: no point lies on that one). Before, the crack
+/// on the row at y = 0.045 cut almost nothing of what the shifted one cuts.
+#[test]
+fn a_crack_through_a_row_of_points_cuts_like_one_beside_it() {
+    let crack = |y: f64, x0: f64, x1: f64, tag: &str| {
+        let text = format!("{BASE}\n[[cracks]]\nfrom = [{x0}, {y}]\nto = [{x1}, {y}]\n");
+        run(tag, &text).summary.expect("solves")
+    };
+    let none = run("crack-none", BASE).summary.expect("solves");
+    // The tip at x = 0.1013 lies on no bond between two points, so
+    // shifting it by 1e-8 m changes no bond at the tip (a tip exactly on a bond
+    // cuts it: the crack is closed).
+    let on = crack(0.045, 0.0, 0.1013, "crack-on-row");
+    let beside = crack(0.045 - 1e-8, 0.0, 0.1013, "crack-beside-row");
+    assert!(bonds(&on) < bonds(&none), "the crack on the row cuts bonds");
+    assert_eq!(bonds(&on), bonds(&beside));
+    let (a, b) = (max_displacement(&on), max_displacement(&beside));
+    assert!((a / b - 1.0).abs() < 1e-9, "{a:e} vs {b:e}");
+    // Drawn from right to left, its left is -y: the row counts as below it, as
+    // for the crack 1e-8 m above.
+    let reversed = crack(0.045, 0.1013, 0.0, "crack-on-row-reversed");
+    let above = crack(0.045 + 1e-8, 0.1013, 0.0, "crack-above-row");
+    assert_eq!(bonds(&reversed), bonds(&above));
+    // A crack through the clamped column (x = 0.005, across the plate) cuts
+    // its bonds to the right (the column counts as left of the upward crack):
+    // the plate is then held by nothing.
+    let text = format!("{BASE}\n[[cracks]]\nfrom = [0.005, -0.1]\nto = [0.005, 0.2]\n");
+    let r = run("crack-clamp-column", &text);
+    assert_eq!(r.code, Some(3), "{}", r.stderr);
+    assert!(r.stderr.contains("is not held"), "{}", r.stderr);
+}
+
+/// Item 4: every writer of point data refuses a non-finite number, naming the
+/// field, the point and the file, and writes nothing (a NaN displacement and an
+/// infinite damage, each at one point of the base plate).
+#[test]
+fn point_writers_refuse_non_finite_numbers() {
+    let disc = common::disc(&common::scene(BASE));
+    let n = disc.points.len();
+    let dir = TempDir::new("writers");
+    let mut u = vec![[0.0; 3]; n];
+    u[7][1] = f64::NAN;
+    let mut damage = vec![0.0; n];
+    damage[11] = f64::INFINITY;
+    let zero = vec![[0.0; 3]; n];
+    let nothing = vec![0.0; n];
+    for (u, damage, expect) in [
+        (&u, &nothing, "the displacement of point 7"),
+        (&zero, &damage, "the damage of point 11"),
+    ] {
+        let data = dhpd::output::PointData {
+            disc: &disc,
+            u,
+            velocity: None,
+            stress: None,
+            damage: Some(damage),
+        };
+        let path = dir.0.join("points.vtu");
+        let err = dhpd::output::vtu::write(&path, &data)
+            .expect_err("a non-finite number is refused")
+            .to_string();
+        assert!(err.contains(expect) && err.contains("points.vtu"), "{err}");
+        assert!(!path.exists());
+    }
+}
+
+/// The base plate as a dynamics scene (density 1000 kg/m³) with `extra` in `[dynamics]`.
+fn dynamics_scene(extra: &str) -> String {
+    BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ndensity = 1000.0",
+    ) + &format!("\n[dynamics]\nsteps = 40\n{extra}\n")
+}
+
+/// Item 5: the damped Verlet's bound α Δt ≤ 2 (derived in the module docs of
+/// `src/drivers/dynamics`): 0.95 × 2/Δt runs and keeps its energy balance,
+/// 1.05 × 2/Δt is refused naming `dynamics.damping` and 2/Δt. Δt is the
+/// default step of the same scene, read from an undamped run.
+#[test]
+fn damping_is_bounded_by_the_damped_verlet_step() {
+    let undamped = run("damping-none", &dynamics_scene(""))
+        .summary
+        .expect("runs");
+    let dt = undamped["time_step"].as_f64().expect("time_step");
+    let below = run(
+        "damping-below",
+        &dynamics_scene(&format!("damping = {:e}", 0.95 * 2.0 / dt)),
+    );
+    assert_eq!(below.code, Some(0), "{}", below.stderr);
+    let above = run(
+        "damping-above",
+        &dynamics_scene(&format!("damping = {:e}", 1.05 * 2.0 / dt)),
+    );
+    assert_eq!(above.code, Some(2), "{}", above.stderr);
+    assert!(
+        above.stderr.contains("dynamics.damping") && above.stderr.contains("2/Δt"),
+        "{}",
+        above.stderr
+    );
+}
+
+/// Item 7: the stepped strategy with a tie of two bonds, one bond allowed per
+/// step and the smallest step fraction allowed (1e-12 × steps) ends: every
+/// accepted step raises λ. (With 1e-300 it looped for ever; now refused, see
+/// tests/bad_scenes.rs.)
+#[test]
+fn the_stepped_strategy_ends_with_the_smallest_step_allowed() {
+    let text = BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\nfracture_energy = 100.0",
+    ) + "\n[quasi_static]\nmax_load_factor = 1.0\nstrategy = \"all\"\n\
+         max_broken_per_step = 1\nmin_step_fraction = 1e-10\n";
+    let r = run("smallest-step", &text);
+    assert_eq!(r.code, Some(0), "{}", r.stderr);
+}
+
+/// Item 6: a displacement-controlled plate (right edge pulled 1 mm) whose
+/// critical stretch 1e-6 is far below its strain (5e-3) breaks apart in its
+/// single step with every reaction zero: the outcome is a separation at step 1,
+/// not "completed" (the body carried the pre-break reactions at λ = 1).
+#[test]
+fn a_body_broken_apart_at_the_first_step_is_reported_separated() {
+    let start = BASE.find("[[loads]]").expect("the base has a load");
+    let end = BASE.find("[[output.profiles]]").expect("and a profile");
+    let text = format!(
+        "{}[[boundary]]\nname = \"right\"\nbox = {{ min = [0.19, 0.0], max = [0.2, 0.1] }}\n\
+         displacement = {{ x = 1e-3 }}\n\n{}\n[quasi_static]\nmax_load_factor = 1.0\n\
+         strategy = \"all\"\nsteps = 1\n",
+        &BASE[..start],
+        &BASE[end..]
+    )
+    .replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ncritical_stretch = 1e-6",
+    );
+    let s = run("separated-at-once", &text).summary.expect("runs");
+    assert_eq!(s["outcome"]["kind"], "separated", "{}", s["outcome"]);
+    assert_eq!(s["outcome"]["detail"]["step"], 1);
+}
+
+/// Item 6: with critical_stretch = 1e-300 the reactions are about 1e-295 N; the
+/// summary's peak is the largest record (from load_displacement.csv, its
+/// magnitude by hypot), not an underflowed 0 N at another step.
+#[test]
+fn tiny_reactions_keep_their_peak() {
+    let text = BASE.replace(
+        "youngs_modulus = 1.0e9",
+        "youngs_modulus = 1.0e9\ncritical_stretch = 1e-300",
+    ) + "\n[quasi_static]\nmax_load_factor = 1.0\n";
+    let dir = TempDir::new("tiny-peak");
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, &text).unwrap();
+    let out = dir.0.join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .args([
+            "run".as_ref(),
+            scene.as_os_str(),
+            "--out".as_ref(),
+            out.as_os_str(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("load_displacement.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (x, y, step) = (col("reaction_left_x"), col("reaction_left_y"), col("step"));
+    let (peak_step, peak) = lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .map(|f| {
+            let v = |k: usize| f[k].parse::<f64>().unwrap();
+            (f[step].parse::<u64>().unwrap(), v(x).hypot(v(y)))
+        })
+        .fold((0, 0.0), |best, r| if r.1 > best.1 { r } else { best });
+    assert!(peak > 0.0 && peak < 1e-290, "records: peak {peak:e}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let p = &summary["peaks"][0];
+    let magnitude = p["magnitude"].as_f64().unwrap();
+    assert!(
+        (magnitude / peak - 1.0).abs() < 1e-12,
+        "{magnitude:e} vs {peak:e}"
+    );
+    assert_eq!(p["step"].as_u64().unwrap(), peak_step);
+}
+
+/// Item 8: SIGINT and SIGTERM during a dynamics run that is writing its step
+/// files stop it with exit 130 / 143, removing the staging folder: nothing is
+/// left beside `--out`.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_run_leaves_nothing_behind() {
+    for (signal, code) in [("-INT", 130), ("-TERM", 143)] {
+        let dir = TempDir::new(&format!("signal{signal}"));
+        let scene = dir.0.join("scene.toml");
+        let text = dynamics_scene("").replace("steps = 40", "steps = 5000000\nrecord_every = 1000")
+            + "\n[output]\nevery = 20000\n";
+        std::fs::write(&scene, text).unwrap();
+        let mut child = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+            .arg("run")
+            .arg(&scene)
+            .arg("--out")
+            .arg(dir.0.join("out"))
+            .stdout(Stdio::null())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        let staging = dir.0.join(format!(".out.partial-{}", child.id()));
+        let start = Instant::now();
+        // Wait until the run has written step files into its staging folder.
+        while std::fs::read_dir(&staging).map_or(0, |d| d.count()) < 2 {
+            assert!(start.elapsed().as_secs() < 60, "no step file written");
+            assert!(child.try_wait().unwrap().is_none(), "the run ended early");
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        }
+        let killed = Command::new("kill")
+            .arg(signal)
+            .arg(child.id().to_string())
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let o = child.wait_with_output().unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(code), "{stderr}");
+        assert!(stderr.contains("interrupted"), "{stderr}");
+        let left: Vec<_> = std::fs::read_dir(&dir.0)
+            .unwrap()
+            .filter_map(|e| e.ok())
+            .map(|e| e.file_name().to_string_lossy().into_owned())
+            .filter(|n| n != "scene.toml")
+            .collect();
+        assert!(left.is_empty(), "{signal}: left behind {left:?}");
+    }
+}
+
+/// Item 8: a staging folder of a process that no longer exists (a run killed
+/// outright) is removed by the next run writing beside the same output; one
+/// of a living process (this test's) is kept.
+#[cfg(unix)]
+#[test]
+fn the_next_run_clears_stale_staging_folders() {
+    let dir = TempDir::new("stale");
+    let mut gone = Command::new("true").spawn().unwrap();
+    let dead = gone.id();
+    gone.wait().unwrap();
+    let stale = dir.0.join(format!(".out.partial-{dead}"));
+    let living = dir.0.join(format!(".out.partial-{}", std::process::id()));
+    for d in [&stale, &living] {
+        std::fs::create_dir_all(d).unwrap();
+        std::fs::write(d.join("step_000000.vtu"), "partial").unwrap();
+    }
+    let scene = dir.0.join("scene.toml");
+    std::fs::write(&scene, BASE).unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_dhpd"))
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.0.join("out"))
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(!stale.exists(), "the dead process's staging folder is left");
+    assert!(
+        living.exists(),
+        "a living process's staging folder was removed"
+    );
+}
