@@ -397,8 +397,7 @@ impl Strip {
             self.angle,
             self.length_cells,
             self.height_cells
-        )
-        .replace('.', "p");
+        );
         if self.model == "shear" {
             let _ = write!(name, "_{}", self.shear_criterion);
         }
@@ -415,7 +414,7 @@ impl Strip {
         if self.calibration != "continuum" {
             let _ = write!(name, "_{}", self.calibration);
         }
-        name
+        name.replace('.', "p")
     }
 
     /// Grip depth: whole spacings, at least a horizon and one spacing.
