@@ -655,6 +655,16 @@ fn scenes() {
         case.output_every = Some(50);
         cases.push(case);
     }
+    // The other specimens of the peak-load study (both models where measured).
+    for mut case in specimens("bond_based", false)
+        .into_iter()
+        .chain(specimens("shear", false))
+        .filter(|c| c.notch != NOTCH || c.centre_crack.is_some())
+    {
+        case.stop_after_peak = None;
+        case.output_every = Some(50);
+        cases.push(case);
+    }
     let mut banded = Sent::new("bond_based", 80, 3.015);
     banded.fine_band = Some(12.0 * banded.spacing());
     let mut constant = banded.clone();
