@@ -320,31 +320,39 @@ vtu = false
 
 
 # ---------------------------------------------------------------- throughput
-def throughput(repeats=5):
+def throughput(repeats=9):
+    """Time per step on the Peridigm comparison box with both bond sets: dhpd's
+    default (overlap partial volumes, bonds to delta + dx/2) and
+    volume_correction = "none" (bonds to delta, Peridigm's bond set). The two are
+    run alternately (paired), one and two threads; medians."""
     path = os.path.join(SCENES, "throughput_box_3d.toml")
+    text = open(path).read()
+    none = text.replace('name = "throughput_box_3d"', 'name = "throughput_box_3d_none"').replace(
+        "horizon_factor = 3.015\n", 'horizon_factor = 3.015\nvolume_correction = "none"\n')
+    none_path = os.path.join(SCENES, "throughput_box_3d_none.toml")
+    with open(none_path, "w") as f:
+        f.write(none)
     rows = []
     for threads in (1, 2):
-        samples = []
+        samples = {"default": [], "none": []}
         for _ in range(repeats):
-            env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
-            out = os.path.join(WORK, f"tp{threads}")
-            subprocess.run([DHPD, "run", path, "--out", out], check=True, env=env,
-                           stdout=subprocess.DEVNULL)
-            s = summary(out)
-            samples.append((s["bond_updates_per_second"], s["timings"]["integration"],
-                            s["timings"]["forces"], s["bonds"], s["steps"]))
-        med = statistics.median(x[0] for x in samples)
-        step = statistics.median(x[1] for x in samples) / samples[0][4]
-        rows.append(dict(threads=threads, bonds=samples[0][3], steps=samples[0][4],
-                         median_bond_updates_per_second=med,
-                         median_step_seconds=step,
-                         force_share=statistics.median(x[2] / x[1] for x in samples),
-                         runs=repeats))
-        print(rows[-1])
-    rows.append(dict(threads="2/1", bonds="", steps="",
-                     median_bond_updates_per_second=rows[1]["median_bond_updates_per_second"]
-                     / rows[0]["median_bond_updates_per_second"],
-                     median_step_seconds="", force_share="", runs=""))
+            for bonds, scene in (("default", path), ("none", none_path)):
+                env = dict(os.environ, RAYON_NUM_THREADS=str(threads))
+                out = os.path.join(WORK, f"tp{threads}_{bonds}")
+                subprocess.run([DHPD, "run", scene, "--out", out], check=True, env=env,
+                               stdout=subprocess.DEVNULL)
+                s = summary(out)
+                samples[bonds].append((s["bond_updates_per_second"], s["timings"]["integration"],
+                                       s["timings"]["forces"], s["bonds"], s["steps"]))
+        for bonds, x in samples.items():
+            steps = x[0][4]
+            rows.append(dict(threads=threads, bond_set=bonds, directed_bonds=x[0][3], steps=steps,
+                             median_step_ms=1e3 * statistics.median(v[1] for v in x) / steps,
+                             fastest_step_ms=1e3 * min(v[1] for v in x) / steps,
+                             median_bond_updates_per_second=statistics.median(v[0] for v in x),
+                             force_share=statistics.median(v[2] / v[1] for v in x),
+                             runs=repeats))
+            print(rows[-1])
     with open(os.path.join(RESULTS, "throughput.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -584,11 +592,13 @@ def principal_angle(points):
     return math.degrees(0.5 * math.atan2(2 * sxy, sxx - syy)) % 180.0
 
 
-def kalthoff_scene(name, regions, g0=6.9e4, end_time=90e-6):
+def kalthoff_scene(name, regions, g0=6.9e4, end_time=90e-6, calibration="dissipation",
+                   tip_spacing=1e-3):
     text = f"""# Kalthoff-Winkler (000 Sec. 6): plate 0.2 x 0.1 m, notches 50 mm long from the
 # left edge at y = 25 and 75 mm, the left edge between them hit at 22 m/s (three
 # point layers), E = 190 GPa, rho = 7800, nu = 1/4 (bond-based, plane strain),
-# G0 = {g0:g} J/m^2 (000 Sec. 6: 6.9e4), delta = 3.015 dx; {name}.
+# G0 = {g0:g} J/m^2 (000 Sec. 6: 6.9e4), delta = 3.015 dx; {name};
+# fracture.calibration = "{calibration}".
 [model]
 dimension = "plane_strain"
 [materials.steel]
@@ -614,24 +624,53 @@ name = "impactor"
 box = {{ min = [0.0, 0.025], max = [{3 * h0!r}, 0.075] }}
 velocity = {{ x = 22.0 }}
 [fracture]
-calibration = "continuum"  # the numbers of this report (issue 21: to be re-measured with the default)
-no_fail = [ {{ box = {{ min = [0.0, 0.025], max = [{3 * h0!r}, 0.075] }} }} ]
+"""
+    if calibration != "dissipation":
+        text += f'calibration = "{calibration}"\n'
+    text += f"""no_fail = [ {{ box = {{ min = [0.0, 0.025], max = [{3 * h0!r}, 0.075] }} }} ]
 [dynamics]
 end_time = {end_time!r}
-record_every = 50
+record_every = 1
 [output]
-every = 50
+every = 10
+"""
+    # Probes on the points around the upper notch tip (0.05, 0.075): the first step
+    # at which one of them has damage is the first broken tip bond.
+    h = tip_spacing
+    for i, dx in enumerate((-0.5, 0.5, 1.5)):
+        for j, dy in enumerate((-0.5, 0.5)):
+            text += f"""[[output.probes]]
+name = "tip_{i}{j}"
+at = [{0.05 + dx * h!r}, {0.075 + dy * h!r}]
 """
     return text
 
 
+def first_break(out):
+    """Time of the first broken bond anywhere (history.csv, every step), and of
+    the first broken bond of a point next to the upper notch tip (probes.csv)."""
+    anywhere = tip = float("nan")
+    with open(os.path.join(out, "history.csv")) as f:
+        for row in csv.DictReader(f):
+            if int(row["broken_bonds"]) > 0:
+                anywhere = float(row["time"])
+                break
+    with open(os.path.join(out, "probes.csv")) as f:
+        for row in csv.DictReader(f):
+            if any(float(v) > 0 for k, v in row.items() if k.endswith("_damage")):
+                tip = float(row["time"])
+                break
+    return anywhere, tip
+
+
 def crack_history(out, tip, side, damage=0.35):
     """Crack-tip distance from the notch tip against time, from the snapshots:
-    the farthest damaged point beyond the tip on one side (+1 upper, −1 lower)."""
+    the farthest point with at least this damage ahead of the notch tip
+    (x beyond it) on one side (+1 upper, −1 lower)."""
     rows = []
     for t, f in series(out):
         xy, phi = read_vtu(f)
-        cracked = [p for p, d in zip(xy, phi) if d >= damage and p[0] > tip[0] + 1e-3
+        cracked = [p for p, d in zip(xy, phi) if d >= damage and p[0] > tip[0]
                    and side * (p[1] - 0.05) > 0]
         reach = max((math.hypot(p[0] - tip[0], p[1] - tip[1]) for p in cracked), default=0.0)
         rows.append((t, reach))
@@ -640,7 +679,8 @@ def crack_history(out, tip, side, damage=0.35):
 
 def speed(history, lo=0.005):
     """Mean crack speed while it grows: from the first snapshot with a crack
-    longer than `lo` to the first one at its final length."""
+    longer than `lo` to the first one at its final length (NaN: it never
+    grew beyond `lo`)."""
     final = max((r for _, r in history), default=0.0)
     grown = [(t, r) for t, r in history if r > lo]
     if len(grown) < 2:
@@ -661,45 +701,86 @@ def kalthoff():
          [((0.0, 0.0), (0.04, 0.1), 1e-3), ((0.04, 0.0), (0.14, 0.1), 5e-4),
           ((0.14, 0.0), (0.2, 0.1), 1e-3)]),
     ]
+    runs = [(6.9e4, "dissipation"), (6.9e4, "continuum"), (6.9e3, "dissipation"),
+            (6.9e3, "continuum")]
     rows = []
+    histories = {}
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(2, len(cases), figsize=(5 * len(cases), 5.6))
-    for g0, ax_row in ((6.9e4, axes[0]), (6.9e3, axes[1])):
-      for ax, (label, name, regions) in zip(ax_row, cases):
-        out = run(f"{name}_g{g0:g}", kalthoff_scene(label, regions, g0))
-        s = summary(out)
-        pts = points(out)
-        for side, tip in ((1, (0.05, 0.075)), (-1, (0.05, 0.025))):
-            cracked = [(float(p["x"]), float(p["y"])) for p in pts
-                       if float(p["damage"]) >= 0.35 and float(p["x"]) > tip[0] + 2e-3
-                       and side * (float(p["y"]) - 0.05) > 0
-                       and 0.002 < float(p["y"]) < 0.098 and float(p["x"]) < 0.198]
-            angle = principal_angle(cracked) if len(cracked) > 3 else float("nan")
-            # From the notch direction (+x), as an acute angle.
-            angle = min(angle, 180.0 - angle)
-            hist = crack_history(out, tip, side)
-            v = speed(hist)
-            start = next((t for t, r in hist if r > 0), float("nan"))
-            rows.append(dict(g0=g0, case=label, crack="upper" if side > 0 else "lower",
-                             points=s["points"], steps=s["steps"],
-                             bonds_broken=s["bonds_broken"], angle_deg=angle,
-                             initiation_us=start * 1e6, crack_speed=v,
-                             speed_over_rayleigh=v / cr,
-                             final_length=hist[-1][1] if hist else 0.0,
-                             seconds=s["total_seconds"]))
-            print(rows[-1])
-        ax.scatter([float(p["x"]) for p in pts], [float(p["y"]) for p in pts],
-                   c=[float(p["damage"]) for p in pts], s=0.3, cmap="inferno_r", vmin=0, vmax=1)
-        ax.set_aspect("equal")
-        ax.set_title(f"G0 = {g0:g}, {label}: damage at 90 µs", fontsize=7)
+    fig, axes = plt.subplots(len(runs), len(cases), figsize=(5 * len(cases), 2.8 * len(runs)))
+    for (g0, calibration), ax_row in zip(runs, axes):
+        for ax, (label, name, regions) in zip(ax_row, cases):
+            scene = name + ("" if g0 == 6.9e4 else f"_g{g0:g}")
+            scene += "" if calibration == "dissipation" else "_continuum"
+            out = run(scene, kalthoff_scene(label, regions, g0, calibration=calibration,
+                                            tip_spacing=min(h for _, _, h in regions)))
+            s = summary(out)
+            pts = points(out)
+            anywhere, at_tip = first_break(out)
+            for side, tip in ((1, (0.05, 0.075)), (-1, (0.05, 0.025))):
+                cracked = [(float(p["x"]), float(p["y"])) for p in pts
+                           if float(p["damage"]) >= 0.35 and float(p["x"]) > tip[0] + 2e-3
+                           and side * (float(p["y"]) - 0.05) > 0
+                           and 0.002 < float(p["y"]) < 0.098 and float(p["x"]) < 0.198]
+                hist = crack_history(out, tip, side)
+                final = hist[-1][1] if hist else 0.0
+                # The angle of a crack that ran (longer than 5 mm), from the notch
+                # direction (+x), as an acute angle.
+                angle = principal_angle(cracked) if final > 0.005 and len(cracked) > 3 \
+                    else float("nan")
+                angle = min(angle, 180.0 - angle)
+                v = speed(hist)
+                histories[(g0, calibration, label, side)] = hist
+                rows.append(dict(g0=g0, calibration=calibration, case=label,
+                                 crack="upper" if side > 0 else "lower",
+                                 points=s["points"], steps=s["steps"],
+                                 bonds_broken=s["bonds_broken"],
+                                 first_broken_bond_us=anywhere * 1e6,
+                                 first_tip_bond_us=at_tip * 1e6,
+                                 damage_035_us=next((t for t, r in hist if r > 0),
+                                                    float("nan")) * 1e6,
+                                 final_length_mm=final * 1e3, angle_deg=angle,
+                                 crack_speed=v, speed_over_rayleigh=v / cr,
+                                 seconds=s["total_seconds"]))
+                print(rows[-1])
+            ax.scatter([float(p["x"]) for p in pts], [float(p["y"]) for p in pts],
+                       c=[float(p["damage"]) for p in pts], s=0.3, cmap="inferno_r",
+                       vmin=0, vmax=1)
+            ax.set_aspect("equal")
+            ax.set_title(f"G0 = {g0:g}, {calibration}, {label}: damage at 90 µs", fontsize=7)
     fig.tight_layout()
     fig.savefig(os.path.join(HERE, "kalthoff.png"), dpi=120)
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for (g0, calibration, label, side), hist in histories.items():
+        if side > 0:
+            ax.plot([t * 1e6 for t, _ in hist], [r * 1e3 for _, r in hist],
+                    label=f"G0 = {g0:g}, {calibration}, {label[:14]}")
+    ax.set_xlabel("time [µs]")
+    ax.set_ylabel("crack reach beyond the notch tip [mm] (damage ≥ 0.35)")
+    ax.legend(fontsize=6)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "kalthoff_tip.png"), dpi=120)
     with open(os.path.join(RESULTS, "kalthoff.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
+    # Where propagation starts: the 1 mm plate (dissipation calibration) at
+    # fractions of the paper's G0.
+    label, name, regions = cases[0]
+    threshold = []
+    for fraction in (2, 3, 4):
+        g0 = 6.9e4 / fraction
+        out = run(f"{name}_g0_over_{fraction}", kalthoff_scene(label, regions, g0))
+        hist = crack_history(out, (0.05, 0.075), 1)
+        threshold.append(dict(g0=g0, first_tip_bond_us=first_break(out)[1] * 1e6,
+                              final_length_mm=hist[-1][1] * 1e3,
+                              crack_speed=speed(hist)))
+        print(threshold[-1])
+    with open(os.path.join(RESULTS, "kalthoff_threshold.csv"), "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(threshold[0]))
+        w.writeheader()
+        w.writerows(threshold)
 
 
 def branching():
