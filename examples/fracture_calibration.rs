@@ -41,9 +41,10 @@ fn measure(strip: &Strip) -> StripDissipation {
     }
     write(&format!("calibration_profile_{}.csv", strip.name()), &csv);
     println!(
-        "{}: D = {:.4} (window {:.1}..{:.1} spacings), work to separation {:.4} G₀A, {} points, {} bonds broken, {:.1} s",
+        "{}: D = {:.4}, r = {:.4} (window {:.1}..{:.1} spacings), work to separation {:.4} G₀A, {} points, {} bonds broken, {:.1} s",
         strip.name(),
         r.d,
+        r.trapping.unwrap_or(f64::NAN),
         r.window.0 / strip.spacing,
         r.window.1 / strip.spacing,
         r.work,
@@ -60,7 +61,7 @@ fn write(name: &str, text: &str) {
 }
 
 const HEADER: &str =
-    "case,model,mode,m,volume_correction,angle,height_cells,youngs_modulus,fracture_energy,spacing,calibration,points,bonds_broken,D,work_over_g0a,seconds\n";
+    "case,model,mode,m,volume_correction,angle,height_cells,youngs_modulus,fracture_energy,spacing,calibration,points,bonds_broken,D,trapping_ratio,work_over_g0a,seconds\n";
 
 fn row(csv: &mut String, case: &str, s: &Strip, m: &StripDissipation) {
     let mode = if s.loading == Loading::Tension {
@@ -70,7 +71,7 @@ fn row(csv: &mut String, case: &str, s: &Strip, m: &StripDissipation) {
     };
     let _ = writeln!(
         csv,
-        "{case},{},{mode},{},{},{},{},{:e},{},{:e},{},{},{},{:.5},{:.5},{:.2}",
+        "{case},{},{mode},{},{},{},{},{:e},{},{:e},{},{},{},{:.5},{},{:.5},{:.2}",
         s.model,
         s.horizon_factor,
         s.volume_correction,
@@ -83,6 +84,7 @@ fn row(csv: &mut String, case: &str, s: &Strip, m: &StripDissipation) {
         m.points,
         m.bonds_broken,
         m.d,
+        m.trapping.map_or(String::new(), |r| format!("{r:.5}")),
         m.work,
         m.seconds
     );
@@ -97,7 +99,12 @@ fn table(model: &'static str, rule: &'static str, ms: &[f64]) {
         s.volume_correction = rule;
         let r = measure(&s);
         row(&mut csv, "table", &s, &r);
-        let _ = writeln!(rust, "({m:.3}, {:.4}),", r.d);
+        let _ = writeln!(
+            rust,
+            "({m:.3}, {:.4}, {:.4}),",
+            r.d,
+            r.trapping.unwrap_or(f64::NAN)
+        );
         write(&format!("calibration_table_{model}_{rule}.csv"), &csv);
     }
     println!("{rust}");

@@ -23,7 +23,9 @@ use dhpd::geometry::{norm, sub};
 use dhpd::output::csv::write_load_displacement;
 use dhpd::reference::FemReference;
 use dhpd::solve::pipeline::Route;
-use dhpd::validation::fracture::{Loading, Sent, FRACTURE_ENERGY, NOTCH, WIDTH};
+use dhpd::validation::fracture::{
+    Loading, Sent, FRACTURE_ENERGY, INCLINED_HALF_LENGTH, NOTCH, WIDTH,
+};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;
@@ -67,7 +69,14 @@ struct Outcome {
 }
 
 fn run(case: &Sent) -> Outcome {
-    let scene = case.scene();
+    let scene = if case.lattice_angle == 0.0 {
+        case.scene()
+    } else {
+        let path = case
+            .write(Path::new("validation/fracture/scenes"))
+            .expect("scenes directory writable");
+        dhpd::scene::load(&path).expect("the rotated-lattice scene loads")
+    };
     let t = Instant::now();
     let prepared = static_solve::prepare(&scene).expect("the scene prepares");
     let points = prepared.disc.points.len();
@@ -182,7 +191,7 @@ fn specimens(model: &'static str, quick: bool) -> Vec<Sent> {
     cases
 }
 
-/// Peak load against LEFM on every specimen, with both calibrations.
+/// Peak load against LEFM on every specimen, with the three calibrations.
 fn lefm(model: &'static str, quick: bool) {
     let mut csv = String::from(
         "model,criterion,specimen,calibration,cells,m,delta_over_a,points,peak,lefm,error,first_break,fresh,reuse,seconds\n",
@@ -192,9 +201,16 @@ fn lefm(model: &'static str, quick: bool) {
     } else {
         &["stretch"]
     };
-    let variants = criteria
-        .iter()
-        .flat_map(|&c| [("dissipation", c), ("continuum", c)]);
+    // The peak calibration with the default criterion (it scales every event load of
+    // the dissipation-calibrated run by 1/r; the deviatoric rule keeps two runs).
+    let variants = criteria.iter().flat_map(|&c| {
+        let calibrations: &[&str] = if c == "deviatoric" {
+            &["dissipation", "continuum"]
+        } else {
+            &["dissipation", "peak", "continuum"]
+        };
+        calibrations.iter().map(move |&k| (k, c))
+    });
     for base in specimens(model, quick) {
         for (calibration, criterion) in variants.clone() {
             let mut case = base.clone();
@@ -446,7 +462,9 @@ fn strategies(quick: bool) {
 }
 
 /// Mode II: the shear grip on the notched plate; the direction in which the
-/// crack leaves the notch tip, against the maximum tangential stress criterion.
+/// crack leaves the notch tip, against the maximum tangential stress criterion,
+/// over resolution (δ/a), horizon factor and the lattice's orientation; then the
+/// inclined centre crack under tension.
 fn kink(quick: bool) {
     let json: serde_json::Value = serde_json::from_str(
         &std::fs::read_to_string("validation/fracture/fem/reference_sent.json").unwrap(),
@@ -455,39 +473,47 @@ fn kink(quick: bool) {
     let mts = json["mode_mixity_B"]["mts_kink_angle_deg"]
         .as_f64()
         .expect("MTS angle");
-    let mut csv = String::from("model,cells,m,kink_deg,mts_deg,broken,seconds\n");
-    let grid: &[(&'static str, usize, f64)] = if quick {
-        &[("shear", 30, 3.015), ("bond_based", 30, 3.015)]
+    let mut csv = String::from(
+        "case,model,cells,m,delta_over_a,lattice_deg,kink_deg,mts_deg,bonds_in_fit,broken,seconds\n",
+    );
+    let grid: &[(&'static str, usize, f64, f64)] = if quick {
+        &[("shear", 30, 3.015, 0.0), ("bond_based", 30, 3.015, 0.0)]
     } else {
         &[
-            ("shear", 30, 3.015),
-            ("shear", 40, 3.015),
-            ("bond_based", 40, 3.015),
-            ("bond_based", 60, 3.015),
+            ("shear", 30, 3.015, 0.0),
+            ("shear", 40, 3.015, 0.0),
+            ("bond_based", 40, 3.015, 0.0),
+            ("bond_based", 60, 3.015, 0.0),
+            ("bond_based", 80, 3.015, 0.0),
+            ("bond_based", 120, 3.015, 0.0),
+            ("bond_based", 80, 4.015, 0.0),
+            ("bond_based", 100, 5.015, 0.0),
+            ("bond_based", 40, 3.015, 10.0),
+            ("bond_based", 40, 3.015, 20.0),
+            ("bond_based", 40, 3.015, 30.0),
+            ("bond_based", 40, 3.015, 45.0),
         ]
     };
-    for &(model, cells, m) in grid {
+    for &(model, cells, m, lattice) in grid {
         let mut case = Sent::new(model, cells, m);
         case.loading = Loading::Shear;
+        case.lattice_angle = lattice;
         // LEFM initiation under the shear grip is at Δ = 2.24e-4 m (FEM, J = G_c).
         case.max_load_factor = 10.0;
         case.stop_after_peak = Some(0.5);
         case.output_every = Some(1_000_000);
         let o = run(&case);
-        let (angle, _) = kink_angle(
-            &o.solution,
-            [NOTCH, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            3.0 * case.horizon(),
-        );
+        let delta = case.horizon();
+        let (angle, fitted) = kink_angle(&o.solution, [NOTCH, 0.0, 0.0], [1.0, 0.0, 0.0], delta);
         let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
         println!(
-            "{model} W/Δx = {cells}: kink {angle:.1}° (MTS {mts:.1}°), {broken} bonds, {:.1} s",
+            "{model} W/Δx = {cells}, m = {m}, lattice {lattice}°: kink {angle:.1}° (MTS {mts:.1}°) from {fitted} bonds, {broken} bonds, {:.1} s",
             o.seconds
         );
         let _ = writeln!(
             csv,
-            "{model},{cells},{m},{angle:.3},{mts:.3},{broken},{:.2}",
+            "shear grip,{model},{cells},{m},{:.4},{lattice},{angle:.3},{mts:.3},{fitted},{broken},{:.2}",
+            delta / NOTCH,
             o.seconds
         );
         write_damage(&case.name(), &o.solution);
@@ -517,22 +543,24 @@ fn kink(quick: bool) {
         let o = run(&case);
         // Each tip's kink against its own MTS direction (point symmetric: 180° apart).
         let tips = dhpd::validation::fracture::inclined_tips();
-        let radius = 3.0 * case.horizon();
         let broken = o.solution.records.last().map_or(0, |r| r.broken_total);
         let e1 = std::f64::consts::FRAC_1_SQRT_2;
         for (tip, ahead, mts) in [
             (tips[0], [e1, e1, 0.0], mts_inclined),
             (tips[1], [-e1, -e1, 0.0], mts_inclined + 180.0),
         ] {
-            let (angle, grown) = kink_angle(&o.solution, tip, ahead, radius);
+            let (angle, fitted) = kink_angle(&o.solution, tip, ahead, case.horizon());
             println!(
-                "inclined, {model} W/Δx = {cells}: tip ({:.4}, {:.4}): kink {angle:.1}° from +x (MTS {mts:.1}°) from {grown} broken bonds ahead of it, {broken} bonds in all, {:.1} s",
+                "inclined, {model} W/Δx = {cells}: tip ({:.4}, {:.4}): kink {angle:.1}° from +x (MTS {mts:.1}°) from {fitted} broken bonds ahead of it, {broken} bonds in all, {:.1} s",
                 tip[0], tip[1], o.seconds
             );
             let _ = writeln!(
                 csv,
-                "{model} inclined tip ({:.4} {:.4}),{cells},3.015,{angle:.3},{mts:.3},{broken},{:.2}",
-                tip[0], tip[1], o.seconds
+                "inclined tip ({:.4} {:.4}),{model},{cells},3.015,{:.4},0,{angle:.3},{mts:.3},{fitted},{broken},{:.2}",
+                tip[0],
+                tip[1],
+                case.horizon() / INCLINED_HALF_LENGTH,
+                o.seconds
             );
         }
         write_damage(&case.name(), &o.solution);
@@ -540,35 +568,44 @@ fn kink(quick: bool) {
     write("kink.csv", &csv);
 }
 
-/// The direction (degrees from +x, in (−180°, 180°]) from `tip` to the centroid
-/// of the midpoints of the broken bonds within `radius` of it and ahead of it
-/// (positive projection on `ahead`, the crack's direction at the tip), with
-/// their number (NaN, 0 if none: the crack did not grow from this tip).
-fn kink_angle(
-    s: &QuasiStaticSolution,
-    tip: [f64; 3],
-    ahead: [f64; 3],
-    radius: f64,
-) -> (f64, usize) {
+/// The direction in which a crack left `tip` (degrees from +x, in (−180°, 180°])
+/// and the number of broken bonds it rests on: the line through the tip that fits
+/// the midpoints of the broken bonds between one and five horizons `delta` from
+/// the tip best (least squares of their distances to it; the principal axis of
+/// their second moment about the tip), pointing to their mean. Only midpoints
+/// within 150° of `ahead` (the crack's direction at the tip) count, so the
+/// pre-crack's own band is left out; the inner horizon, where every bond around
+/// the tip breaks, too. NaN and 0 when fewer than two bonds qualify.
+fn kink_angle(s: &QuasiStaticSolution, tip: [f64; 3], ahead: [f64; 3], delta: f64) -> (f64, usize) {
     let (x, bonds) = (&s.disc.points.x, &s.disc.bonds);
-    let (mut sx, mut sy, mut n) = (0.0, 0.0, 0);
+    let cos_limit = 150f64.to_radians().cos();
+    let (mut sxx, mut syy, mut sxy, mut mx, mut my, mut n) = (0.0, 0.0, 0.0, 0.0, 0.0, 0);
     for i in 0..x.len() {
         for b in bonds.owned_by(i).filter(|&b| !bonds.intact[b]) {
             let j = bonds.neighbour[b] as usize;
             let mid: [f64; 3] = std::array::from_fn(|a| 0.5 * (x[i][a] + x[j][a]));
             let r = sub(&mid, &tip);
-            if norm(&r) <= radius && r[0] * ahead[0] + r[1] * ahead[1] > 0.0 {
-                sx += r[0];
-                sy += r[1];
-                n += 1;
+            let d = norm(&r);
+            if d < delta || d > 5.0 * delta || (r[0] * ahead[0] + r[1] * ahead[1]) < cos_limit * d {
+                continue;
             }
+            sxx += r[0] * r[0];
+            syy += r[1] * r[1];
+            sxy += r[0] * r[1];
+            mx += r[0];
+            my += r[1];
+            n += 1;
         }
     }
-    if n == 0 {
-        (f64::NAN, 0)
-    } else {
-        (sy.atan2(sx).to_degrees(), n)
+    if n < 2 {
+        return (f64::NAN, n);
     }
+    let mut theta = 0.5 * (2.0 * sxy).atan2(sxx - syy);
+    if theta.cos() * mx + theta.sin() * my < 0.0 {
+        theta += std::f64::consts::PI;
+    }
+    let deg = theta.to_degrees();
+    (if deg > 180.0 { deg - 360.0 } else { deg }, n)
 }
 
 /// Damage per point (x, y, damage) for the damage maps.
@@ -680,9 +717,22 @@ fn scenes() {
     let mut bar = Sent::new("bond_based", 20, 3.015);
     bar.depth = Some(0.02);
     cases.push(bar);
-    for (model, cells) in [("shear", 40), ("bond_based", 40)] {
-        let mut case = Sent::new(model, cells, 3.015);
+    for (model, cells, m, lattice) in [
+        ("shear", 40, 3.015, 0.0),
+        ("bond_based", 40, 3.015, 0.0),
+        ("bond_based", 60, 3.015, 0.0),
+        ("bond_based", 80, 3.015, 0.0),
+        ("bond_based", 120, 3.015, 0.0),
+        ("bond_based", 80, 4.015, 0.0),
+        ("bond_based", 100, 5.015, 0.0),
+        ("bond_based", 40, 3.015, 10.0),
+        ("bond_based", 40, 3.015, 20.0),
+        ("bond_based", 40, 3.015, 30.0),
+        ("bond_based", 40, 3.015, 45.0),
+    ] {
+        let mut case = Sent::new(model, cells, m);
         case.loading = Loading::Shear;
+        case.lattice_angle = lattice;
         case.max_load_factor = 10.0;
         case.output_every = Some(20);
         cases.push(case);
@@ -695,8 +745,7 @@ fn scenes() {
         cases.push(case);
     }
     for case in cases {
-        let path = dir.join(format!("{}.toml", case.name()));
-        std::fs::write(&path, case.toml()).unwrap();
+        let path = case.write(dir).unwrap();
         println!("wrote {}", path.display());
     }
 }

@@ -26,6 +26,29 @@
 //!
 //! makes steady growth dissipate `G₀` per unit area on every owner's lattice.
 //!
+//! **Lattice trapping and the peak calibration.** Steady growth on a lattice is a
+//! saw-tooth: the crack passes one spacing in a cycle of events whose critical
+//! loads differ, and the dissipated energy is their energy mean, while the peak
+//! load of a specimen is their largest. The strip measures the ratio
+//!
+//! ```text
+//! r = (largest critical grip displacement of a cycle) / (the energy-equivalent one)
+//! ```
+//!
+//! (`validation::fracture::trapping_ratio`). Like `D` it depends on the lattice
+//! alone, and at fixed `m` the peak load of a sharp crack tends, as `δ/a → 0`, to
+//! `r ×` the LEFM load of the dissipated energy (validation/fracture/README.md).
+//! No single scale of the critical values makes both the dissipated energy and the
+//! peak load agree with `G₀` (their ratio is `r²`, fixed by the lattice); the
+//! **peak** calibration (`fracture.calibration = "peak"`) chooses the peak load:
+//!
+//! ```text
+//! s₀ = s₀(continuum) / (r(m_i) sqrt(D(m_i)))
+//! ```
+//!
+//! so that the largest energy release rate steady growth needs is `G₀`; growth
+//! then dissipates `G₀ / r²` per unit area.
+//!
 //! **How `D` is measured** (`examples/fracture_calibration.rs`, regenerates the
 //! tables): a strip of 120 × 30 spacings between clamped grips, split from an
 //! edge pre-crack of 20 spacings by the event strategy with the continuum values.
@@ -44,30 +67,40 @@
 
 use crate::scene::{Dimension, EnergyCounting, ShearCriterion, VolumeCorrection};
 
-/// `(m, D)` of the bond-based model, 2D, overlap partial volumes (the default).
-const BOND_BASED_2D_OVERLAP: &[(f64, f64)] = &[
-    (2.015, 1.5002),
-    (2.515, 1.2855),
-    (3.015, 1.2358),
-    (3.515, 1.2300),
-    (4.015, 1.1486),
-    (4.515, 1.0957),
-    (5.015, 1.0897),
+/// What the strip measures of one lattice.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LatticeFactors {
+    /// `D`: energy dissipated per unit area of steady growth over `G₀`.
+    pub dissipation: f64,
+    /// `r`: the largest critical load of a cycle of steady growth over the
+    /// energy-equivalent load.
+    pub trapping: f64,
+}
+
+/// `(m, D, r)` of the bond-based model, 2D, overlap partial volumes (the default).
+const BOND_BASED_2D_OVERLAP: &[(f64, f64, f64)] = &[
+    (2.015, 1.5002, 1.1444),
+    (2.515, 1.2855, 1.1107),
+    (3.015, 1.2358, 1.0613),
+    (3.515, 1.2300, 1.0744),
+    (4.015, 1.1486, 1.0557),
+    (4.515, 1.0957, 1.0653),
+    (5.015, 1.0897, 1.0539),
 ];
 
-/// `(m, D)` of the bond-based model, 2D, no partial-volume correction (at these
+/// `(m, D, r)` of the bond-based model, 2D, no partial-volume correction (at these
 /// `m` only: without partial volumes the bond set jumps between them).
-const BOND_BASED_2D_NONE: &[(f64, f64)] = &[(3.015, 1.2756), (4.015, 1.0631)];
+const BOND_BASED_2D_NONE: &[(f64, f64, f64)] = &[(3.015, 1.2756, 1.0684), (4.015, 1.0631, 1.0477)];
 
-/// `(m, D)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only).
-const BOND_BASED_2D_RAMP: &[(f64, f64)] = &[(3.015, 1.0694), (4.015, 0.9711)];
+/// `(m, D, r)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only).
+const BOND_BASED_2D_RAMP: &[(f64, f64, f64)] = &[(3.015, 1.0694, 1.0841), (4.015, 0.9711, 1.0524)];
 
-/// `(m, D)` of the shear model in mode I, 2D, overlap partial volumes, ν = 1/3,
+/// `(m, D, r)` of the shear model in mode I, 2D, overlap partial volumes, ν = 1/3,
 /// energy criterion, pair counting (at these `m` only).
-const SHEAR_2D_ENERGY: &[(f64, f64)] = &[(3.015, 1.7732)];
+const SHEAR_2D_ENERGY: &[(f64, f64, f64)] = &[(3.015, 1.7732, 1.0433)];
 
 /// The same for the deviatoric criterion of 001 Eq. 37.
-const SHEAR_2D_DEVIATORIC: &[(f64, f64)] = &[(3.015, 2.0081)];
+const SHEAR_2D_DEVIATORIC: &[(f64, f64, f64)] = &[(3.015, 2.0081, 1.0689)];
 
 /// The Poisson ratio of the shear model's measurements.
 const SHEAR_POISSON_RATIO: f64 = 1.0 / 3.0;
@@ -104,13 +137,13 @@ impl Uncalibrated {
     }
 }
 
-/// The dissipation factor `D` of a bond-based owner with horizon factor `m`
-/// on a regular lattice, or why there is none.
-pub fn bond_based_factor(
+/// The lattice factors of a bond-based owner with horizon factor `m` on a
+/// regular lattice, or why there are none.
+pub fn bond_based_factors(
     dimension: Dimension,
     rule: VolumeCorrection,
     m: f64,
-) -> Result<f64, Uncalibrated> {
+) -> Result<LatticeFactors, Uncalibrated> {
     if !matches!(dimension, Dimension::PlaneStress | Dimension::PlaneStrain) {
         return Err(Uncalibrated::Dimension);
     }
@@ -122,17 +155,17 @@ pub fn bond_based_factor(
     .ok_or(Uncalibrated::HorizonFactor)
 }
 
-/// The mode-I dissipation factor of a shear-model owner with horizon factor `m`
+/// The mode-I lattice factors of a shear-model owner with horizon factor `m`
 /// and Poisson ratio `nu`, for the pair count of `G₀` (the paper's one-bond count
-/// stores twice the energy at the same strain: `2 D`).
-pub fn shear_factor(
+/// stores twice the energy at the same strain: `2 D`, the same `r`).
+pub fn shear_factors(
     dimension: Dimension,
     rule: VolumeCorrection,
     criterion: ShearCriterion,
     counting: EnergyCounting,
     nu: f64,
     m: f64,
-) -> Result<f64, Uncalibrated> {
+) -> Result<LatticeFactors, Uncalibrated> {
     if !matches!(dimension, Dimension::PlaneStress | Dimension::PlaneStrain) {
         return Err(Uncalibrated::Dimension);
     }
@@ -149,48 +182,63 @@ pub fn shear_factor(
     let pair = node(table, m).ok_or(Uncalibrated::HorizonFactor)?;
     Ok(match counting {
         EnergyCounting::Pair => pair,
-        EnergyCounting::OneBond => 2.0 * pair,
+        EnergyCounting::OneBond => LatticeFactors {
+            dissipation: 2.0 * pair.dissipation,
+            ..pair
+        },
     })
 }
 
-/// The tabulated value at `m` (to a relative 1e-9), without interpolation.
-fn node(table: &[(f64, f64)], m: f64) -> Option<f64> {
+/// The tabulated factors at `m` (to a relative 1e-9), without interpolation.
+fn node(table: &[(f64, f64, f64)], m: f64) -> Option<LatticeFactors> {
     table
         .iter()
-        .find(|&&(x, _)| (x - m).abs() <= 1e-9 * x)
-        .map(|&(_, d)| d)
+        .find(|&&(x, _, _)| (x - m).abs() <= 1e-9 * x)
+        .map(|&(_, dissipation, trapping)| LatticeFactors {
+            dissipation,
+            trapping,
+        })
 }
 
 /// Linear interpolation in a table sorted by its first column; `None` outside it.
 /// The ends are widened by a relative 1e-9 so that `m` computed as `δ/Δx`
 /// matches a tabulated value.
-fn interpolate(table: &[(f64, f64)], m: f64) -> Option<f64> {
+fn interpolate(table: &[(f64, f64, f64)], m: f64) -> Option<LatticeFactors> {
     let (first, last) = (table.first()?, table.last()?);
     if m < first.0 * (1.0 - 1e-9) || m > last.0 * (1.0 + 1e-9) {
         return None;
     }
     let m = m.clamp(first.0, last.0);
     let k = table
-        .partition_point(|&(x, _)| x < m)
+        .partition_point(|&(x, _, _)| x < m)
         .clamp(1, table.len().max(2) - 1);
     if table.len() == 1 {
-        return Some(first.1);
+        return node(table, first.0);
     }
-    let ((x0, y0), (x1, y1)) = (table[k - 1], table[k]);
-    Some(y0 + (y1 - y0) * (m - x0) / (x1 - x0))
+    let ((x0, d0, r0), (x1, d1, r1)) = (table[k - 1], table[k]);
+    let t = (m - x0) / (x1 - x0);
+    Some(LatticeFactors {
+        dissipation: d0 + (d1 - d0) * t,
+        trapping: r0 + (r1 - r0) * t,
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    fn d(f: Option<LatticeFactors>) -> Option<f64> {
+        f.map(|f| f.dissipation)
+    }
+
     #[test]
     fn interpolation_hits_the_nodes_and_refuses_outside() {
-        let t = [(2.0, 1.5), (3.0, 1.2), (4.0, 1.1)];
-        assert_eq!(interpolate(&t, 2.0), Some(1.5));
-        assert_eq!(interpolate(&t, 4.0), Some(1.1));
-        assert!((interpolate(&t, 2.5).unwrap() - 1.35).abs() < 1e-15);
-        assert!((interpolate(&t, 3.5).unwrap() - 1.15).abs() < 1e-15);
+        let t = [(2.0, 1.5, 1.2), (3.0, 1.2, 1.1), (4.0, 1.1, 1.0)];
+        assert_eq!(d(interpolate(&t, 2.0)), Some(1.5));
+        assert_eq!(d(interpolate(&t, 4.0)), Some(1.1));
+        assert!((d(interpolate(&t, 2.5)).unwrap() - 1.35).abs() < 1e-15);
+        assert!((interpolate(&t, 2.5).unwrap().trapping - 1.15).abs() < 1e-15);
+        assert!((d(interpolate(&t, 3.5)).unwrap() - 1.15).abs() < 1e-15);
         assert_eq!(interpolate(&t, 1.9), None);
         assert_eq!(interpolate(&t, 4.1), None);
         assert_eq!(interpolate(&[], 3.0), None);
@@ -198,9 +246,9 @@ mod tests {
 
     #[test]
     fn nodes_only_tables_refuse_between_their_nodes() {
-        let t = [(3.015, 1.3), (4.015, 1.1)];
-        assert_eq!(node(&t, 3.015), Some(1.3));
-        assert_eq!(node(&t, 0.1 * 40.15), Some(1.1));
+        let t = [(3.015, 1.3, 1.06), (4.015, 1.1, 1.05)];
+        assert_eq!(d(node(&t, 3.015)), Some(1.3));
+        assert_eq!(d(node(&t, 0.1 * 40.15)), Some(1.1));
         assert_eq!(node(&t, 3.5), None);
     }
 
@@ -210,9 +258,13 @@ mod tests {
             BOND_BASED_2D_OVERLAP,
             BOND_BASED_2D_NONE,
             BOND_BASED_2D_RAMP,
+            SHEAR_2D_ENERGY,
+            SHEAR_2D_DEVIATORIC,
         ] {
             assert!(t.windows(2).all(|w| w[0].0 < w[1].0));
-            assert!(t.iter().all(|&(_, d)| d.is_finite() && d > 0.0));
+            assert!(t
+                .iter()
+                .all(|&(_, d, r)| d.is_finite() && d > 0.0 && r.is_finite() && r >= 1.0));
         }
     }
 }

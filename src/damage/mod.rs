@@ -67,7 +67,9 @@
 //!
 //! **Calibration** ([`calibration`]): with `fracture.calibration = "dissipation"`
 //! (the default) every critical value from `G₀` above is divided by `sqrt(D)`, the
-//! measured excess dissipation of the owner's lattice.
+//! measured excess dissipation of the owner's lattice; with `"peak"` by `r sqrt(D)`,
+//! `r` the lattice's trapping ratio (the peak load of a sharp crack then tends to
+//! the LEFM load of `G₀`).
 //!
 //! Damage of a point (formulation Sec. 5): `φ_i = 1 − Σ_intact V_j ν_ij / Σ_all V_j ν_ij`
 //! over the bonds it owns.
@@ -79,7 +81,7 @@ use crate::model::Model;
 use crate::scene::{
     Calibration, Dimension, EnergyCounting, FractureParameter, ModelKind, Scene, ShearCriterion,
 };
-use calibration::Uncalibrated;
+use calibration::{LatticeFactors, Uncalibrated};
 
 pub mod calibration;
 use rayon::prelude::*;
@@ -146,6 +148,9 @@ pub struct CalibratedGroup {
     pub horizon_factor: f64,
     /// The dissipation factor `D` applied (critical value / sqrt(D)); `None`: the continuum value.
     pub dissipation_factor: Option<f64>,
+    /// The trapping ratio `r` applied as well (`calibration = "peak"`: critical
+    /// value / (r sqrt(D))).
+    pub trapping_ratio: Option<f64>,
     /// Why no factor applies under the dissipation calibration.
     pub continuum_because: Option<&'static str>,
     /// Number of owners.
@@ -154,14 +159,19 @@ pub struct CalibratedGroup {
 
 impl CalibrationReport {
     /// One line per group that keeps the continuum value under the dissipation
-    /// calibration (for the run's notes).
+    /// or peak calibration (for the run's notes).
     pub fn notes(&self) -> Vec<String> {
+        let name = match self.calibration {
+            Calibration::Dissipation => "dissipation",
+            Calibration::Peak => "peak",
+            Calibration::Continuum => "continuum",
+        };
         self.groups
             .iter()
             .filter_map(|g| {
                 g.continuum_because.map(|why| {
                     format!(
-                        "fracture.calibration = \"dissipation\": {} points of material \"{}\" \
+                        "fracture.calibration = \"{name}\": {} points of material \"{}\" \
                          (m = {:.3}) keep the continuum critical value: {why}",
                         g.points, g.material, g.horizon_factor
                     )
@@ -170,15 +180,17 @@ impl CalibrationReport {
             .collect()
     }
 
-    fn add(&mut self, material: &str, m: f64, factor: Result<Option<f64>, Uncalibrated>) {
-        let (dissipation_factor, continuum_because) = match factor {
-            Ok(f) => (f, None),
-            Err(why) => (None, Some(why.explain())),
+    fn add(&mut self, material: &str, m: f64, applied: &Applied) {
+        let (dissipation_factor, trapping_ratio, continuum_because) = match *applied {
+            Ok(None) => (None, None, None),
+            Ok(Some((d, r))) => (Some(d), r, None),
+            Err(why) => (None, None, Some(why.explain())),
         };
         let same = |g: &&mut CalibratedGroup| {
             g.material == material
                 && (g.horizon_factor - m).abs() <= 1e-9 * m
                 && g.dissipation_factor == dissipation_factor
+                && g.trapping_ratio == trapping_ratio
                 && g.continuum_because == continuum_because
         };
         match self.groups.iter_mut().find(same) {
@@ -187,6 +199,7 @@ impl CalibrationReport {
                 material: material.to_string(),
                 horizon_factor: m,
                 dissipation_factor,
+                trapping_ratio,
                 continuum_because,
                 points: 1,
             }),
@@ -219,21 +232,25 @@ fn continuum_critical_value(scene: &Scene, disc: &Discretization, i: usize, g0: 
     }
 }
 
-/// The dissipation factor of owner `i` with horizon factor `m` ([`calibration`]).
-fn dissipation_factor(
+/// What a calibration applied to an owner: `(D, r)` (`r` under the peak
+/// calibration only), nothing (continuum), or why the continuum value is kept.
+type Applied = Result<Option<(f64, Option<f64>)>, Uncalibrated>;
+
+/// The lattice factors of owner `i` with horizon factor `m` ([`calibration`]).
+fn lattice_factors(
     scene: &Scene,
     disc: &Discretization,
     i: usize,
     m: f64,
-) -> Result<f64, Uncalibrated> {
+) -> Result<LatticeFactors, Uncalibrated> {
     if matches!(disc.points.source[i], Source::Mesh { .. }) {
         return Err(Uncalibrated::Irregular);
     }
     match scene.model {
         ModelKind::BondBased => {
-            calibration::bond_based_factor(scene.dimension, scene.volume_correction, m)
+            calibration::bond_based_factors(scene.dimension, scene.volume_correction, m)
         }
-        ModelKind::Shear => calibration::shear_factor(
+        ModelKind::Shear => calibration::shear_factors(
             scene.dimension,
             scene.volume_correction,
             scene.fracture.shear_criterion,
@@ -282,15 +299,16 @@ impl Criterion {
                         Some(FractureParameter::Energy(g0)) => {
                             let continuum = continuum_critical_value(scene, disc, i, g0);
                             let m = p.horizon[i] / p.spacing[i];
-                            let factor = match calibration {
+                            let applied: Applied = match calibration {
                                 Calibration::Continuum => Ok(None),
-                                Calibration::Dissipation => {
-                                    dissipation_factor(scene, disc, i, m).map(Some)
-                                }
+                                Calibration::Dissipation => lattice_factors(scene, disc, i, m)
+                                    .map(|f| Some((f.dissipation, None))),
+                                Calibration::Peak => lattice_factors(scene, disc, i, m)
+                                    .map(|f| Some((f.dissipation, Some(f.trapping)))),
                             };
-                            report.add(&material.name, m, factor);
-                            match factor {
-                                Ok(Some(d)) => continuum / d.sqrt(),
+                            report.add(&material.name, m, &applied);
+                            match applied {
+                                Ok(Some((d, r))) => continuum / (r.unwrap_or(1.0) * d.sqrt()),
                                 _ => continuum,
                             }
                         }

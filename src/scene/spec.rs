@@ -626,8 +626,10 @@ pub struct FractureSpec {
     pub shear_energy: EnergyCounting,
     /// How `fracture_energy` becomes a critical value: `"dissipation"` (default)
     /// makes steady crack growth on the scene's own lattice dissipate G₀ per unit
-    /// crack area; `"continuum"` is the papers' formula (the crossing bonds of a
-    /// continuum hold G₀). See `damage::calibration`.
+    /// crack area; `"peak"` makes the peak load of a sharp crack tend to the LEFM
+    /// load of G₀ (growth then dissipates G₀/r², r the lattice's trapping ratio);
+    /// `"continuum"` is the papers' formula (the crossing bonds of a continuum
+    /// hold G₀). See `damage::calibration`.
     #[serde(default)]
     pub calibration: Calibration,
     /// Shear model: which bond quantity reaches its critical value. `"energy"`
@@ -673,6 +675,10 @@ pub enum Calibration {
     Dissipation,
     /// The continuum formula of the papers (000 Eq. 12, 001 Eq. 40).
     Continuum,
+    /// The continuum formula divided by `r sqrt(D)`, `r` the measured lattice
+    /// trapping ratio: the peak load of a sharp crack tends to the LEFM load of
+    /// G₀ as δ/a → 0; growth dissipates G₀/r² per unit area.
+    Peak,
 }
 
 /// `[[fracture.no_fail]]`: a box where bonds never break.

@@ -83,6 +83,9 @@ pub struct Sent {
     pub calibration: &'static str,
     /// `fracture.shear_criterion` (shear model: `"energy"`, the default, or `"deviatoric"`).
     pub shear_criterion: &'static str,
+    /// A square lattice of the same spacing rotated by this angle (degrees), written
+    /// as a point file ([`Sent::write`]), instead of the grid (uniform 2D plates only).
+    pub lattice_angle: f64,
 }
 
 /// Half-length of the inclined centre crack (m).
@@ -115,6 +118,7 @@ impl Sent {
             centre_crack: None,
             calibration: "dissipation",
             shear_criterion: "energy",
+            lattice_angle: 0.0,
         }
     }
 
@@ -163,7 +167,10 @@ impl Sent {
         if self.depth.is_some() {
             name.push_str("_3d");
         }
-        name
+        if self.lattice_angle != 0.0 {
+            let _ = write!(name, "_lattice{}deg", self.lattice_angle);
+        }
+        name.replace('.', "p")
     }
 
     /// The scene file text.
@@ -218,6 +225,13 @@ impl Sent {
             );
         };
         match self.fine_band {
+            None if self.lattice_angle != 0.0 => {
+                let _ = writeln!(
+                    t,
+                    "[[point_files]]\npath = \"{}.points\"\nmaterial = \"plate\"\n",
+                    self.name()
+                );
+            }
             None => region(&mut t, h, bottom, top),
             Some(band) => {
                 region(&mut t, h, -band, band);
@@ -288,8 +302,31 @@ impl Sent {
         t
     }
 
-    /// The validated scene.
+    /// The point-file text of the rotated lattice (`None` on the grid).
+    pub fn point_file(&self) -> Option<String> {
+        let top = 0.5 * LENGTH + self.horizon_factor.ceil() * self.spacing();
+        (self.lattice_angle != 0.0)
+            .then(|| rotated_lattice(self.spacing(), self.lattice_angle, WIDTH, top))
+    }
+
+    /// Writes the scene (and its point file) into `dir`; returns the scene's path.
+    pub fn write(&self, dir: &Path) -> std::io::Result<std::path::PathBuf> {
+        std::fs::create_dir_all(dir)?;
+        if let Some(text) = self.point_file() {
+            std::fs::write(dir.join(format!("{}.points", self.name())), text)?;
+        }
+        let path = dir.join(format!("{}.toml", self.name()));
+        std::fs::write(&path, self.toml())?;
+        Ok(path)
+    }
+
+    /// The validated scene (on the grid; a rotated lattice needs its point file:
+    /// [`Sent::write`] and `scene::load`).
     pub fn scene(&self) -> Scene {
+        assert_eq!(
+            self.lattice_angle, 0.0,
+            "a rotated lattice is read from its point file"
+        );
         let spec = parse_spec(&self.toml(), false).expect("the SENT scene parses");
         Scene::try_from_spec(spec, Path::new("."), "sent").expect("the SENT scene is valid")
     }
@@ -422,33 +459,16 @@ impl Strip {
         (self.horizon_factor.ceil() + 1.0) * self.spacing
     }
 
-    /// The point-file text of the rotated lattice (`None` on the regular grid):
-    /// `x y volume` per row, lattice offset so that no point lies on `y = 0`.
+    /// The point-file text of the rotated lattice (`None` on the regular grid).
     pub fn point_file(&self) -> Option<String> {
-        if self.angle == 0.0 {
-            return None;
-        }
-        let h = self.spacing;
-        let (s, c) = self.angle.to_radians().sin_cos();
-        let (x_max, y_max) = (
-            self.length(),
-            0.5 * self.height_cells as f64 * h + self.grip(),
-        );
-        // An offset that keeps points off the crack line and the box edges.
-        let origin = [0.5 * self.length() + 0.3183 * h, 0.4142 * h];
-        let reach = ((x_max * x_max + 4.0 * y_max * y_max).sqrt() / h).ceil() as i64 + 2;
-        let mut text = String::from("# x y volume (rotated square lattice)\n");
-        for i in -reach..=reach {
-            for j in -reach..=reach {
-                let (a, b) = (i as f64 * h, j as f64 * h);
-                let x = origin[0] + c * a - s * b;
-                let y = origin[1] + s * a + c * b;
-                if (0.0..x_max).contains(&x) && y.abs() < y_max {
-                    let _ = writeln!(text, "{x:.12e} {y:.12e} {:.12e}", h * h);
-                }
-            }
-        }
-        Some(text)
+        (self.angle != 0.0).then(|| {
+            rotated_lattice(
+                self.spacing,
+                self.angle,
+                self.length(),
+                0.5 * self.height_cells as f64 * self.spacing + self.grip(),
+            )
+        })
     }
 
     /// The scene file text; `points` is the point file's path relative to the
@@ -549,6 +569,27 @@ impl Strip {
     }
 }
 
+/// The point-file text (`x y volume` per row) of a square lattice of spacing `h`
+/// rotated by `angle` degrees, filling `0 ≤ x < x_max`, `|y| < y_max`; offset so
+/// that no point lies on `y = 0` (the crack line) or on the box's edges.
+fn rotated_lattice(h: f64, angle: f64, x_max: f64, y_max: f64) -> String {
+    let (s, c) = angle.to_radians().sin_cos();
+    let origin = [0.5 * x_max + 0.3183 * h, 0.4142 * h];
+    let reach = ((x_max * x_max + 4.0 * y_max * y_max).sqrt() / h).ceil() as i64 + 2;
+    let mut text = String::from("# x y volume (rotated square lattice)\n");
+    for i in -reach..=reach {
+        for j in -reach..=reach {
+            let (a, b) = (i as f64 * h, j as f64 * h);
+            let x = origin[0] + c * a - s * b;
+            let y = origin[1] + s * a + c * b;
+            if (0.0..x_max).contains(&x) && y.abs() < y_max {
+                let _ = writeln!(text, "{x:.12e} {y:.12e} {:.12e}", h * h);
+            }
+        }
+    }
+    text
+}
+
 /// What a calibration strip dissipated ([`Strip::dissipation`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct StripDissipation {
@@ -560,12 +601,74 @@ pub struct StripDissipation {
     pub window: (f64, f64),
     /// Energy booked per spacing along the strip, over `G₀ × spacing`.
     pub profile: Vec<f64>,
+    /// The lattice trapping ratio `r`: in the steady window, the largest critical
+    /// grip displacement of the events over the energy-equivalent one (the median
+    /// over windows of four spacings; [`trapping_ratio`]).
+    pub trapping: Option<f64>,
     /// Points of the strip.
     pub points: usize,
     /// Directed bonds broken.
     pub bonds_broken: usize,
     /// Wall time of the run (s).
     pub seconds: f64,
+}
+
+/// One event of a strip run ([`Booking`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StripEvent {
+    /// The crack front after the event: the largest `x` of the midpoint of a bond
+    /// broken so far (m). Events are placed by the front, not by where their own
+    /// bonds are: a bond in the wake that breaks late belongs to the cycle of the
+    /// front at that time, whose loads it shares.
+    pub x: f64,
+    /// Grip displacement at the critical state (m).
+    pub displacement: f64,
+    /// Stiffness of the strip the event removed, `(R_critical − R_broken)/Δ` (N/m).
+    pub stiffness_drop: f64,
+}
+
+/// The lattice trapping ratio of steady growth: in each window of `width`
+/// along the crack inside `[start, end)`, the largest critical grip displacement
+/// over the energy-equivalent one `ū = sqrt(Σ Δ_k² ΔK_k / Σ ΔK_k)` (the events
+/// release `Δ_k² ΔK_k / 2`, so `ū` is the constant displacement that would
+/// release the same energy); the median over the windows, which start a spacing
+/// apart. At fixed grip displacement a long strip's energy release rate is
+/// `G = Δ² |dK/da| / 2`, so `r²` is the largest energy release rate that steady
+/// growth needs over the energy it dissipates: the peak load of a sharp crack
+/// exceeds the LEFM load of the dissipated energy by `r`. `None` when no window
+/// holds an event.
+pub fn trapping_ratio(
+    events: &[StripEvent],
+    start: f64,
+    end: f64,
+    width: f64,
+    step: f64,
+) -> Option<f64> {
+    let mut ratios = Vec::new();
+    let mut lo = start;
+    while lo + width <= end + 1e-12 * width {
+        let inside = events.iter().filter(|e| (lo..lo + width).contains(&e.x));
+        let (mut num, mut den, mut max) = (0.0, 0.0, 0.0_f64);
+        for e in inside {
+            num += e.displacement * e.displacement * e.stiffness_drop;
+            den += e.stiffness_drop;
+            max = max.max(e.displacement);
+        }
+        if den > 0.0 {
+            ratios.push(max / (num / den).sqrt());
+        }
+        lo += step;
+    }
+    if ratios.is_empty() {
+        return None;
+    }
+    ratios.sort_by(f64::total_cmp);
+    let n = ratios.len();
+    Some(if n % 2 == 1 {
+        ratios[n / 2]
+    } else {
+        0.5 * (ratios[n / 2 - 1] + ratios[n / 2])
+    })
 }
 
 /// Books every event's released energy at the midpoints of the bonds it broke.
@@ -578,6 +681,11 @@ struct Booking {
     critical: Option<(f64, f64)>,
     /// `(x of the bond's midpoint, energy)` of every broken bond.
     booked: Vec<(f64, f64)>,
+    /// Every event: the crack front after it, its critical grip displacement and
+    /// the stiffness it removed, `ΔR/Δ`.
+    events: Vec<StripEvent>,
+    /// The crack front: the largest `x` of a broken bond's midpoint so far.
+    front: f64,
     /// Work of the grip, `Σ ΔE`.
     total: f64,
 }
@@ -603,6 +711,14 @@ impl Observer for Booking {
                             self.intact[b] = false;
                         }
                     }
+                }
+                self.front = midpoints.iter().fold(self.front, |f, &m| f.max(m));
+                if !midpoints.is_empty() && u > 0.0 {
+                    self.events.push(StripEvent {
+                        x: self.front,
+                        displacement: u,
+                        stiffness_drop: (r_critical - reaction) / u,
+                    });
                 }
                 let share = released / midpoints.len().max(1) as f64;
                 self.booked
@@ -637,6 +753,8 @@ impl Strip {
             intact: prepared.disc.bonds.intact.clone(),
             critical: None,
             booked: Vec::new(),
+            events: Vec::new(),
+            front: f64::NEG_INFINITY,
             total: 0.0,
         };
         quasi_static::run(&scene, prepared, &mut booking)?;
@@ -661,6 +779,7 @@ impl Strip {
             work: booking.total / (g0 * (self.length() - self.notch())),
             window: (start, end),
             profile,
+            trapping: trapping_ratio(&booking.events, start, end, 4.0 * h, h),
             points,
             bonds_broken: booking.booked.len(),
             seconds: start_time.elapsed().as_secs_f64(),

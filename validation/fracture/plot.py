@@ -3,10 +3,11 @@
 
 Reads the CSV files that `cargo run --release --example fracture_study -- ...`
 writes into results/ and the FEM reference in fem/; writes
-  lefm.png            peak load / LEFM against delta/a, bond-based, three specimens, both calibrations
+  lefm.png            peak load / LEFM against delta/a, bond-based, three specimens, three calibrations
   curves.png          load-displacement curves of the three strategies with the LEFM path
   damage.png          damage maps: mode I (DH-PD band), shear grip, inclined crack
-  error_vs_time.png   peak-load error against run time, both models, both calibrations
+  kink.png            shear grip: the crack leaving the notch over resolution, m and lattice angle
+  error_vs_time.png   peak-load error against run time, both models, three calibrations
 
 Run from the repository root:  python3 validation/fracture/plot.py
 (matplotlib and numpy; see requirements-plot.txt)
@@ -51,12 +52,12 @@ def series(data, specimen, m, calibration, criterion=None):
 
 
 def plot_lefm():
-    """Peak / LEFM against delta/a, bond-based, three specimens, both calibrations."""
+    """Peak / LEFM against delta/a, bond-based, three specimens, three calibrations."""
     fig, axes = plt.subplots(1, 2, figsize=(11, 4), sharey=True)
     data = rows("lefm_bond_based.csv")
     for ax, m in zip(axes, (3.015, 4.015)):
         for specimen, label, marker in SPECIMENS:
-            for calibration, style in (("dissipation", "-"), ("continuum", ":")):
+            for calibration, style in (("dissipation", "-"), ("peak", "--"), ("continuum", ":")):
                 pts = series(data, specimen, m, calibration)
                 if pts:
                     ax.plot([p[0] for p in pts], [p[1] for p in pts], style, marker=marker,
@@ -130,14 +131,49 @@ def plot_damage():
     fig.savefig(os.path.join(HERE, "damage.png"), dpi=130)
 
 
+def plot_kink():
+    """Shear grip, bond-based: damage near the notch tip over delta/a, m and the
+    lattice's orientation, with the MTS direction (-70.5 deg) and the fitted kink."""
+    import math
+    kinks = {(r["model"], r["cells"], r["m"], r["lattice_deg"]): float(r["kink_deg"])
+             for r in rows("kink.csv") if r["case"] == "shear grip"}
+    cases = [(model, cells, m, lat) for (model, cells, m, lat) in kinks if model == "bond_based"]
+    if not cases:
+        return
+    fig, axes = plt.subplots(2, (len(cases) + 1) // 2, figsize=(2.6 * ((len(cases) + 1) // 2), 5.6))
+    for ax, (model, cells, m, lat) in zip(axes.flat, cases):
+        name = f"sent_{model}_event_n{cells}_m{int(float(m))}_shear_loading"
+        if float(lat) != 0.0:
+            name += f"_lattice{lat}deg".replace(".", "p")
+        data = rows(f"damage_{name}.csv")
+        near = [r for r in data if 0.04 < float(r["x"]) < 0.09 and -0.045 < float(r["y"]) < 0.005]
+        ax.scatter([float(r["x"]) for r in near], [float(r["y"]) for r in near],
+                   c=[float(r["damage"]) for r in near], s=1.5, cmap="Reds", vmin=0, vmax=0.5,
+                   rasterized=True)
+        for angle, style in ((-70.5, "b--"), (kinks[(model, cells, m, lat)], "k-")):
+            t = math.radians(angle)
+            ax.plot([0.05, 0.05 + 0.04 * math.cos(t)], [0.0, 0.04 * math.sin(t)], style, lw=0.8)
+        ax.plot([0.04, 0.05], [0.0, 0.0], "b-", lw=1)
+        ax.set_xlim(0.04, 0.09)
+        ax.set_ylim(-0.045, 0.005)
+        ax.set_aspect("equal")
+        ax.set_title(f"W/dx = {cells}, m = {float(m):.0f}, lattice {float(lat):g}°\n"
+                     f"kink {kinks[(model, cells, m, lat)]:.1f}° (MTS -70.5°)", fontsize=7)
+        ax.tick_params(labelsize=5)
+    for ax in list(axes.flat)[len(cases):]:
+        ax.axis("off")
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "kink.png"), dpi=130)
+
+
 def plot_error_vs_time():
-    """|peak / LEFM - 1| against run time: both models, both calibrations, every specimen."""
+    """|peak / LEFM - 1| against run time: both models, three calibrations, every specimen."""
     fig, ax = plt.subplots(figsize=(7, 4.5))
     cases = [("bond_based", None, "bond-based")] + [("shear", c, f"shear, {c}") for c in ("energy", "deviatoric")]
     colours = iter(f"C{k}" for k in range(20))
     for model, criterion, name in cases:
         data = rows(f"lefm_{model}.csv")
-        for calibration, fill in (("dissipation", "full"), ("continuum", "none")):
+        for calibration, fill in (("dissipation", "full"), ("peak", "left"), ("continuum", "none")):
             colour = next(colours)
             first = True
             for specimen, _, marker in SPECIMENS:
@@ -164,5 +200,6 @@ if __name__ == "__main__":
     plot_lefm()
     plot_curves()
     plot_damage()
+    plot_kink()
     plot_error_vs_time()
     print("figures written to", HERE)
