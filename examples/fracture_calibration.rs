@@ -140,7 +140,7 @@ fn independence(model: &'static str, m: f64) {
     let mut stiff = base.clone();
     stiff.youngs_modulus *= 7.0;
     stiff.fracture_energy *= 0.1;
-    cases.push(("E x7, G0 / 10", stiff));
+    cases.push(("E x7 and G0 / 10", stiff));
     let mut fine = base.clone();
     fine.spacing *= 0.37;
     cases.push(("spacing x 0.37", fine));
