@@ -175,6 +175,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     if raw.is_empty() {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
+    check_scales(&raw, scene)?;
     reject_duplicates(&raw)?;
     overlap::reject_overlaps(&raw, &scene.regions, d)?;
     if scene.horizons == HorizonMode::Constant {
@@ -185,6 +186,34 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
         points: raw,
         mesh_groups,
     })
+}
+
+/// Refuses an imported point (point file, mesh) whose spacing or coordinates
+/// lie outside the lengths double precision holds for the bond computations
+/// ([`crate::scene::length_in_range`]) or whose bond stiffness is out of range
+/// (regions are checked with the scene).
+fn check_scales(raw: &[RawPoint], scene: &Scene) -> Result<(), InputError> {
+    for p in raw {
+        if matches!(p.source, Source::Region(_)) {
+            continue;
+        }
+        let field = p.source.to_string();
+        crate::scene::length_in_range(&field, "spacing", p.spacing)?;
+        for &x in &p.x[..scene.d()] {
+            crate::scene::length_in_range(&field, "coordinate", x)?;
+        }
+        crate::scene::bond_stiffness_in_range(
+            &field,
+            &field,
+            scene.dimension,
+            &scene.materials[p.material as usize],
+            p.spacing,
+            p.horizon,
+            p.volume,
+            scene.thickness,
+        )?;
+    }
+    Ok(())
 }
 
 /// Rejects points at identical positions, naming where both come from.

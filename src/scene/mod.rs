@@ -16,9 +16,10 @@ pub use dynamics::{
 };
 pub use spec::*;
 pub use validate::{
-    Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,
-    Material, MeshFile, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region,
-    Scene, Selection, MAX_HORIZON_FACTOR,
+    bond_stiffness_in_range, length_in_range, Aabb, Crack, FractureParameter, FractureSettings,
+    Hole, HorizonRule, Load, LoadTarget, Material, MeshFile, OutputSettings, PointFile, Prescribed,
+    Probe, Profile, QuasiStatic, Region, Scene, Selection, MAX_HORIZON_FACTOR, MAX_LENGTH,
+    MIN_LENGTH,
 };
 
 use crate::error::{Error, InputError};
@@ -115,14 +116,16 @@ pub fn read_input_file(path: &Path, field: &str, max_bytes: u64) -> Result<Vec<u
 }
 
 /// Reads a text input file ([`read_input_file`]) as UTF-8 (UTF-16 is recognised
-/// and named; the parsers skip a leading byte-order mark).
+/// and named) without its leading UTF-8 byte-order mark, if any: scenes, point
+/// files and meshes all accept one.
 pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
     let bytes = read_input_file(path, field, max_bytes)?;
     let utf16 = bytes.starts_with(&[0xFF, 0xFE])
         || bytes.starts_with(&[0xFE, 0xFF])
         || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));
     match std::str::from_utf8(&bytes) {
-        Ok(text) => Ok(text.to_string()),
+        // A UTF-8 byte-order mark (as some editors write) is not part of the text.
+        Ok(text) => Ok(text.strip_prefix('\u{feff}').unwrap_or(text).to_string()),
         Err(_) if utf16 => Err(InputError::new(
             field,
             format!(
