@@ -232,25 +232,26 @@ pub enum NumericalError {
         limit_bytes: f64,
         limited_by: MemoryLimit,
     },
-    /// An explicit run produced a non-finite state.
+    /// An explicit run produced a non-finite state (checked every step).
     #[error(
         "the explicit run diverged at step {step} (t = {time:e} s): point {point} (x = {position:?}) \
-         has a non-finite displacement or velocity; the time step is too large for the stiffest \
-         point (forced above the stable one?) or a load grows without bound"
+         has a non-finite displacement or velocity, or a kinetic energy beyond double precision; \
+         {cause}; nothing was written"
     )]
     Diverged {
         step: usize,
         time: f64,
         point: usize,
         position: [f64; 3],
+        /// What made it diverge, as far as the driver can tell (the forced
+        /// time step, or the magnitudes of the input).
+        cause: String,
     },
     /// An explicit run lost its energy balance.
     #[error(
         "the explicit run lost its energy balance at step {step} (t = {time:e} s): the error \
          E_kin + E_strain + E_broken + E_damping − W_ext − E_0 is {error:.3e} of the largest \
-         energy, above dynamics.balance_tolerance = {tolerance:e}; the time step is too large \
-         (forced above the stable one?) or the forces are not the gradient of an energy (the \
-         shear model with heavy breakage, the traditional horizons); raise \
+         energy, above dynamics.balance_tolerance = {tolerance:e}; {cause}; raise \
          dynamics.balance_tolerance to accept the run"
     )]
     EnergyBalance {
@@ -258,6 +259,8 @@ pub enum NumericalError {
         time: f64,
         error: f64,
         tolerance: f64,
+        /// The likely cause (the forced time step, or forces without an energy).
+        cause: String,
     },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]

@@ -94,12 +94,14 @@ pub struct Gaussian {
 }
 
 impl Gaussian {
-    /// The pulse's displacement at `x`.
+    /// The pulse's displacement at `x`. The distance is divided by the width
+    /// before it is squared: a width of 1e-200 m (whose square underflows to 0)
+    /// gives the amplitude at the centre and 0 elsewhere, not 0/0.
     pub fn at(&self, x: &[f64; 3]) -> [f64; 3] {
         let r2: f64 = (0..self.axes)
-            .map(|a| (x[a] - self.center[a]).powi(2))
+            .map(|a| ((x[a] - self.center[a]) / self.width).powi(2))
             .sum();
-        let g = (-r2 / (self.width * self.width)).exp();
+        let g = (-r2).exp();
         self.amplitude.map(|a| a * g)
     }
 }
