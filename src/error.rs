@@ -202,14 +202,14 @@ pub enum NumericalError {
     /// The solution failed its residual check, after iterative refinement.
     #[error(
         "solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e} after \
-         {refinement_steps} step(s) of iterative refinement; the system is too ill-conditioned \
-         for double precision (a near-mechanism or an extreme stiffness contrast), or the \
-         factorisation lost accuracy (try solver.method = \"lu\")"
+         {refinement_steps} step(s) of iterative refinement; {hint}"
     )]
     ResidualTooLarge {
         residual: f64,
         threshold: f64,
         refinement_steps: usize,
+        /// Why, and which route (if any) does better.
+        hint: String,
     },
     /// A non-finite number appeared in a result.
     #[error("non-finite value in {what}")]

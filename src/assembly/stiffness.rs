@@ -174,6 +174,31 @@ impl Stiffness {
         y
     }
 
+    /// `b − K x` carried in double-double precision (each product split
+    /// exactly by an FMA, the sums compensated) and rounded once, so it is
+    /// accurate to about ε of the result rather than ε of `|K||x|`: what
+    /// iterative refinement needs when the residual of a double-precision
+    /// product is all round-off ([`crate::solve::refine_extended`]).
+    pub fn residual_extended(&self, pattern: &Pattern, x: &[f64], b: &[f64]) -> Vec<f64> {
+        // Each row's sum as an unevaluated pair (hi, lo).
+        let mut hi = b.to_vec();
+        let mut lo = vec![0.0; self.n];
+        for (col, &xc) in x.iter().enumerate() {
+            for k in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+                let row = pattern.row_idx[k];
+                let p = self.values[k] * xc;
+                let p_err = self.values[k].mul_add(xc, -p);
+                // hi − p exactly as s + e (Knuth's two-sum).
+                let s = hi[row] - p;
+                let v = s - hi[row];
+                let e = (hi[row] - (s - v)) + (-p - v);
+                hi[row] = s;
+                lo[row] += e - p_err;
+            }
+        }
+        hi.iter().zip(&lo).map(|(h, l)| h + l).collect()
+    }
+
     /// `y = K x`.
     pub fn mul(&self, pattern: &Pattern, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];

@@ -257,7 +257,15 @@ pub fn solve_with<M: Model>(
     timings.assembly = t.elapsed().as_secs_f64();
 
     let asymmetry = pipeline.asymmetry(&stiffness);
-    let solved = pipeline.solve(&disc, &dofs, &stiffness, &rhs)?;
+    // The model's residual, from the bond forces (pipeline::solve_with_residual).
+    let model_residual = |x: &[f64]| -> Vec<f64> {
+        let f_int = internal_forces(model, &disc, &dofs.expand(x), true);
+        dofs.free_dofs
+            .iter()
+            .map(|&(i, c)| f_ext[i as usize][c as usize] + f_int[i as usize][c as usize])
+            .collect()
+    };
+    let solved = pipeline.solve_with_residual(&disc, &dofs, &stiffness, &rhs, &model_residual)?;
     let report = &solved.report;
     timings.numeric_factorization = report.factor_seconds;
     if report.refinement_steps > 0 {

@@ -516,6 +516,91 @@ pub fn refine(
     (residual, steps)
 }
 
+/// Largest number of iterative-refinement steps with an accurate residual
+/// ([`refine_extended`]); each gains about `-log10(κ ε)` digits.
+pub const MAX_EXTENDED_STEPS: usize = 10;
+
+/// Largest last correction, relative to the solution (`‖dx‖∞ / ‖x‖∞`), with
+/// which [`refine_extended`] counts as converged: the answer is then known to
+/// about that accuracy (the corrections contract, so the error left is at
+/// most about the last one). The 10⁶-point 1D bar stops at 4.6e-12.
+pub const REFINED_ACCURACY: f64 = 1e-10;
+
+/// How [`refine_extended`] ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExtendedRefinement {
+    /// Steps taken.
+    pub steps: usize,
+    /// The last correction applied, relative to the solution (`‖dx‖∞ / ‖x‖∞`).
+    pub accuracy: f64,
+    /// `accuracy` ≤ [`REFINED_ACCURACY`].
+    pub converged: bool,
+    /// `‖b − K x‖ / ‖b‖` of the final `x`, with the accurate residual.
+    pub residual: f64,
+}
+
+/// Iterative refinement with the residual `b − K x` computed more accurately
+/// than a double-precision product (`residual`: the model's bond forces, or
+/// `K x` in extended precision) and corrected with the factor
+/// (`approximate_solve`). When `κ(K) ε < 1` the corrections contract to the
+/// round-off of the answer itself (Higham, Accuracy and Stability of
+/// Numerical Algorithms, ch. 12), even where the relative residual of any
+/// double-precision `x` stays far above round-off: a 1D chain of 10⁶ points
+/// has `κ ≈ 4e11` and `ε ‖|K||x|‖ / ‖b‖ ≈ 2e-7`, so `‖Kx − b‖/‖b‖ ≤ 1e-8`
+/// cannot be had, but the answer can. A correction is applied while it at
+/// most halves the previous one; the loop ends when one does not (the
+/// round-off floor, or a factor that lost every digit: `κ ε ≳ 1`), when a
+/// correction is below 4 ulps of `‖x‖∞`, or after [`MAX_EXTENDED_STEPS`].
+pub fn refine_extended(
+    residual: &dyn Fn(&[f64]) -> Vec<f64>,
+    approximate_solve: &dyn Fn(&mut [f64]),
+    b: &[f64],
+    x: &mut [f64],
+) -> ExtendedRefinement {
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+    let b_norm = norm2(b.iter().copied());
+    let relative = |r: &[f64]| {
+        let r = norm2(r.iter().copied());
+        if b_norm > 0.0 {
+            r / b_norm
+        } else {
+            r
+        }
+    };
+    let mut previous = f64::INFINITY;
+    let mut steps = 0;
+    let mut r = residual(x);
+    while steps < MAX_EXTENDED_STEPS {
+        let mut dx = r.clone();
+        approximate_solve(&mut dx);
+        let size = max_abs(&dx);
+        if !size.is_finite() || size > 0.5 * previous {
+            break;
+        }
+        x.iter_mut().zip(&dx).for_each(|(a, d)| *a += d);
+        steps += 1;
+        previous = size;
+        r = residual(x);
+        if size <= 4.0 * f64::EPSILON * max_abs(x) {
+            break;
+        }
+    }
+    let scale = max_abs(x);
+    let accuracy = if steps == 0 {
+        f64::INFINITY
+    } else if scale > 0.0 {
+        previous / scale
+    } else {
+        0.0
+    };
+    ExtendedRefinement {
+        steps,
+        accuracy,
+        converged: accuracy <= REFINED_ACCURACY,
+        residual: relative(&r),
+    }
+}
+
 /// Euclidean norm without overflow or underflow of the squares: scaled by the
 /// largest magnitude first (a vector of 1e160s has a norm, not ∞; non-finite
 /// entries give a non-finite norm).
