@@ -129,7 +129,7 @@ fn run_fracture(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
     let settings = scene.quasi_static.as_ref().expect("a fracture scene");
     let steps =
         (settings.strategy != dhpd::scene::Strategy::Event).then_some(settings.steps as u64);
-    let mut series = SeriesWriter::new(staging.path(), steps);
+    let mut series = SeriesWriter::new(staging.path(), steps, settings.max_load_factor);
     let solution = quasi_static::run(scene, prepared, &mut series)?;
     let entries = series.finish();
     output::write_quasi_static(

@@ -2,31 +2,26 @@
 //! `output.every` steps and at `output.steps`, with displacement, velocity and
 //! damage), `history.csv` (energies, balance error, bonds broken, reactions),
 //! `probes.csv` (displacement, velocity and damage of each probe), the final
-//! state (`points.vtu`, `points.csv`) and `summary.json`; a progress bar with
-//! ETA on stderr for runs longer than a few seconds, silent when stderr is not
-//! a terminal. Everything goes through a staging directory (no partial result).
+//! state (`points.vtu`, `points.csv`) and `summary.json`; progress on stderr
+//! (step, time, bonds broken, ETA): a bar on a terminal, a line every 30 s
+//! otherwise ([`super::progress`]). Everything goes through a staging
+//! directory (no partial result).
 
 use super::csv::{header, row};
+use super::progress::Progress;
 use super::{vtu, Plan, PointData, Staging};
 use crate::drivers::dynamics::{DynamicsSolution, Observer, Snapshot};
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
-
-/// Runs shorter than this show no progress bar.
-const QUIET_FOR: Duration = Duration::from_secs(2);
 
 /// Writes the series' files and shows progress while a run goes.
 pub struct DynamicsWriter {
     dir: PathBuf,
     entries: Vec<(f64, String)>,
-    bar: Option<ProgressBar>,
-    start: Instant,
-    terminal: bool,
+    /// Created at the first step, when the number of steps is known.
+    progress: Option<Progress>,
 }
 
 impl DynamicsWriter {
@@ -35,16 +30,14 @@ impl DynamicsWriter {
         Self {
             dir: dir.to_path_buf(),
             entries: Vec::new(),
-            bar: None,
-            start: Instant::now(),
-            terminal: std::io::stderr().is_terminal(),
+            progress: None,
         }
     }
 
-    /// The `(time, file)` entries written; ends the progress bar.
+    /// The `(time, file)` entries written; ends the progress display.
     pub fn finish(mut self) -> Vec<(f64, String)> {
-        if let Some(bar) = self.bar.take() {
-            bar.finish_and_clear();
+        if let Some(p) = &mut self.progress {
+            p.finish();
         }
         self.entries
     }
@@ -52,21 +45,15 @@ impl DynamicsWriter {
 
 impl Observer for DynamicsWriter {
     fn progress(&mut self, step: usize, steps: usize, time: f64, broken: usize) {
-        if !self.terminal || step % 16 != 0 || self.start.elapsed() < QUIET_FOR {
+        // Every 16th step: the clock is read once per 16 steps.
+        if step % 16 != 0 {
             return;
         }
-        let elapsed = self.start.elapsed();
-        let bar = self.bar.get_or_insert_with(|| {
-            let bar = ProgressBar::new(steps as u64);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:30}] step {pos}/{len}, ETA {eta} | {msg}",
-            ) {
-                bar.set_style(style.progress_chars("=> "));
-            }
-            bar.with_elapsed(elapsed)
-        });
-        bar.set_position(step as u64);
-        bar.set_message(format!("t = {time:.4e}, bonds broken {broken}"));
+        self.progress
+            .get_or_insert_with(|| Progress::new(Some(steps as u64), "step"))
+            .update(step as u64, step as f64 / steps.max(1) as f64, || {
+                format!("t = {time:.4e} s, bonds broken {broken}")
+            });
     }
 
     fn snapshot(&mut self, s: &Snapshot) -> Result<(), Error> {
