@@ -285,12 +285,15 @@ pub fn solve_with<M: Model>(
             .map(|i| model.stress(&disc, i, &u).unwrap_or_default())
             .collect::<Vec<_>>()
     });
-    if stress
-        .as_ref()
-        .is_some_and(|s| s.iter().flatten().flatten().any(|v| !v.is_finite()))
-    {
+    if let Some(i) = stress.as_ref().and_then(|s| {
+        s.iter()
+            .position(|b| b.iter().flatten().any(|v| !v.is_finite()))
+    }) {
         return Err(NumericalError::NonFinite {
-            what: "the recovered stress".into(),
+            what: format!(
+                "the recovered stress of point {i} (x = {:?}); nothing was written",
+                disc.points.x[i]
+            ),
         }
         .into());
     }

@@ -73,35 +73,56 @@ impl Observer for DynamicsWriter {
     }
 }
 
+/// Refuses a non-finite number in the history or the probes, naming its
+/// column and step (the run checks its state every step, so this is a last
+/// guard).
 fn check_finite(solution: &DynamicsSolution) -> Result<(), Error> {
-    let finite = solution.records.iter().all(|r| {
-        [
-            r.time,
-            r.kinetic,
-            r.strain,
-            r.broken_energy,
-            r.damping,
-            r.external_work,
-            r.balance_error,
-            r.residual,
-        ]
-        .iter()
-        .chain(r.reactions.iter().flatten())
-        .chain(
-            r.probes
-                .iter()
-                .flat_map(|p| p.0.iter().chain(&p.1).chain([&p.2])),
-        )
-        .all(|v| v.is_finite())
-    });
-    if finite {
-        Ok(())
-    } else {
-        Err(NumericalError::NonFinite {
-            what: "the run's history (energies, reactions or probes)".into(),
+    for r in &solution.records {
+        let named = [
+            ("time", r.time),
+            ("kinetic", r.kinetic),
+            ("strain", r.strain),
+            ("broken_energy", r.broken_energy),
+            ("damping", r.damping),
+            ("external_work", r.external_work),
+            ("balance_error", r.balance_error),
+            ("residual", r.residual),
+        ];
+        let bad = named
+            .iter()
+            .find(|(_, v)| !v.is_finite())
+            .map(|(c, v)| (format!("{c} of history.csv"), *v))
+            .or_else(|| {
+                solution
+                    .set_names
+                    .iter()
+                    .zip(&r.reactions)
+                    .find_map(|(name, f)| {
+                        let v = f.iter().find(|v| !v.is_finite())?;
+                        Some((format!("reaction of {name} in history.csv"), *v))
+                    })
+            })
+            .or_else(|| {
+                r.probes.iter().enumerate().find_map(|(k, p)| {
+                    let v =
+                        p.0.iter()
+                            .chain(&p.1)
+                            .chain([&p.2])
+                            .find(|v| !v.is_finite())?;
+                    Some((format!("probe {k} in probes.csv"), *v))
+                })
+            });
+        if let Some((what, value)) = bad {
+            return Err(NumericalError::NonFinite {
+                what: format!(
+                    "the {what} ({value}) at step {}; nothing was written",
+                    r.step
+                ),
+            }
+            .into());
         }
-        .into())
     }
+    Ok(())
 }
 
 fn write_history(path: &Path, s: &DynamicsSolution) -> Result<(), Error> {
