@@ -62,6 +62,16 @@ pub fn echo_list<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
     text
 }
 
+/// A computed number (a ratio, a count of spacings) as a message shows it:
+/// four decimals in [1e-3, 1e6), else three in exponent form (`1.000e152`).
+pub fn approx(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
 /// A path as echoed in a message ([`echo`] of its display form).
 pub fn echo_path(path: &Path) -> String {
     echo(&path.display().to_string()).into_owned()

@@ -13,7 +13,7 @@
 //! `horizon_factor × (volume / thickness)^(1/d)`.
 
 use super::grid::{RawPoint, Source};
-use crate::error::{echo, echo_list, num, InputError};
+use crate::error::{approx, echo, echo_list, num, InputError};
 use crate::scene::{Material, PointFile};
 
 /// Parses point-file text. `field` names the file in errors (`point_files[0]`).
@@ -105,11 +105,11 @@ pub fn parse(
         let factor = crate::scene::MAX_HORIZON_FACTOR;
         if horizon > factor * spacing {
             return Err(at(format!(
-                "horizon {} is {:.4e} times the point's equivalent spacing {} \
+                "horizon {} is {} times the point's equivalent spacing {} \
                  ((volume / thickness)^(1/{d})): implausibly large (above {factor}); typical \
                  horizons are 2 to 5 spacings",
                 num(horizon),
-                horizon / spacing,
+                approx(horizon / spacing),
                 num(spacing)
             )));
         }

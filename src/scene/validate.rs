@@ -1,7 +1,7 @@
 //! Validation of a [`SceneSpec`] into a typed [`Scene`].
 
 use super::spec::*;
-use crate::error::{echo_list, num, InputError};
+use crate::error::{approx, echo_list, num, InputError};
 use crate::model::bond_based;
 use std::path::{Path, PathBuf};
 
@@ -370,7 +370,7 @@ impl Scene {
                     return Err(InputError::new(
                         format!("{f}.box"),
                         format!("extent {} along axis {a} is not a whole number of spacings ({} × {}); \
-                                 adjust the box or the spacing", num(bounds.max[a] - bounds.min[a]), num(cells), num(r.spacing)),
+                                 adjust the box or the spacing", num(bounds.max[a] - bounds.min[a]), approx(cells), num(r.spacing)),
                     ));
                 }
             }
@@ -396,8 +396,8 @@ impl Scene {
                     }
                     if h > MAX_HORIZON_FACTOR * r.spacing {
                         return Err(InputError::new(format!("{f}.horizon"), format!(
-                            "horizon {} is {:.4e} spacings ({}): implausibly large (above {MAX_HORIZON_FACTOR}); \
-                             typical horizons are 2 to 5 spacings", num(h), h / r.spacing, num(r.spacing))));
+                            "horizon {} is {} spacings ({}): implausibly large (above {MAX_HORIZON_FACTOR}); \
+                             typical horizons are 2 to 5 spacings", num(h), approx(h / r.spacing), num(r.spacing))));
                     }
                     HorizonRule::Radius(h)
                 }

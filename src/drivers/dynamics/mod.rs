@@ -648,7 +648,20 @@ impl Verlet<'_> {
         let total: f64 = (0..v.len()).map(kinetic).sum();
         let moving =
             moving.or_else(|| (!total.is_finite()).then(|| diverged_point(u, v, &self.mass)));
-        let strained = (0..u.len()).find(|&i| u[i].iter().chain(&f_int[i]).any(|x| !x.is_finite()));
+        // A non-finite displacement, else the largest displacement when a
+        // force overflowed (the point whose displacement caused it).
+        let strained = (0..u.len())
+            .find(|&i| u[i].iter().any(|x| !x.is_finite()))
+            .or_else(|| {
+                f_int.iter().flatten().any(|x| !x.is_finite()).then(|| {
+                    (0..u.len())
+                        .max_by(|&a, &b| {
+                            crate::geometry::magnitude(&u[a])
+                                .total_cmp(&crate::geometry::magnitude(&u[b]))
+                        })
+                        .unwrap_or(0)
+                })
+            });
         let (point, velocity) = match (moving, strained) {
             (Some(i), _) => (i, true),
             (None, Some(i)) => (i, false),
