@@ -285,3 +285,31 @@ pub fn fill_columns<M: Model>(
             },
         );
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `1 − 3 · fl(1/3)` is 2⁻⁵⁴; a double-precision product rounds it to 0.
+    #[test]
+    fn extended_residual_keeps_what_a_double_product_rounds_away() {
+        let pattern = Pattern {
+            row_offsets: Vec::new(),
+            row_points: Vec::new(),
+            in_offsets: Vec::new(),
+            in_bonds: Vec::new(),
+            col_ptr: vec![0, 1],
+            row_idx: vec![0],
+        };
+        let k = Stiffness {
+            n: 1,
+            values: vec![3.0],
+        };
+        let x = [1.0 / 3.0];
+        assert_eq!(k.mul(&pattern, &x), vec![1.0]);
+        assert_eq!(
+            k.residual_extended(&pattern, &x, &[1.0]),
+            vec![2f64.powi(-54)]
+        );
+    }
+}

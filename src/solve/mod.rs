@@ -877,4 +877,33 @@ mod tests {
         let (after, steps) = refine(&apply, &negated, &b, &mut x);
         assert_eq!((steps, after), (0, 1.0));
     }
+
+    /// Refinement with an accurate residual: a factor accurate to five digits
+    /// converges to the answer (last correction below `REFINED_ACCURACY`); a
+    /// factor of the wrong sign is reported as not converged.
+    #[test]
+    fn extended_refinement_converges_or_says_it_did_not() {
+        let (apply, chol) = perturbed_pair(20, 1e-5);
+        let b: Vec<f64> = (0..400).map(|k| (k as f64).cos()).collect();
+        let residual = |x: &[f64]| -> Vec<f64> {
+            let kx = apply(x);
+            b.iter().zip(&kx).map(|(bi, k)| bi - k).collect()
+        };
+        let mut x = vec![0.0; 400];
+        let r = refine_extended(
+            &residual,
+            &|v: &mut [f64]| chol.solve_in_place(v),
+            &b,
+            &mut x,
+        );
+        assert!(r.converged && r.accuracy <= REFINED_ACCURACY, "{r:?}");
+        assert!(r.residual < 1e-13, "{r:?}");
+        let negated = |v: &mut [f64]| {
+            chol.solve_in_place(v);
+            v.iter_mut().for_each(|a| *a = -*a);
+        };
+        let mut x = vec![0.0; 400];
+        let r = refine_extended(&residual, &negated, &b, &mut x);
+        assert!(!r.converged && r.steps == 1, "{r:?}");
+    }
 }
