@@ -7,6 +7,10 @@
 //! | 3 | numerical failure: the problem is ill-posed or the solver failed |
 //! | 4 | I/O failure while reading inputs or writing results |
 //! | 130, 143 | interrupted by SIGINT, SIGTERM: partial results removed (`output::interrupt`) |
+//!
+//! Messages clip the user text they echo ([`echo`], [`echo_list`]; applied to
+//! every [`InputError`] by its constructor as a safety net) and print numbers
+//! in a bounded form ([`num`] for given values, [`approx`] for computed ones).
 
 use std::borrow::Cow;
 use std::path::{Path, PathBuf};

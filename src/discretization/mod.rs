@@ -7,6 +7,12 @@
 //! (formulation Sec. 6) and an intact flag per bond. The dual horizon
 //! `H'_i = { j : i ∈ H_j }` is implied and never stored here.
 //!
+//! Imported points (point files, meshes) are checked like grid regions: a
+//! spacing within [`crate::scene::MIN_LENGTH`, `crate::scene::MAX_LENGTH`],
+//! coordinates within ±`MAX_LENGTH`, a bond stiffness in the floating-point
+//! range. Points at the same position, or closer than 1e-9 of a spacing, are
+//! refused, naming both sources.
+//!
 //! The partial-volume rule is chosen per scene ([`partial_volume`]); the
 //! default counts the exact overlap of each neighbour's equivalent disc or ball
 //! with the horizon, so bonds reach up to `δ_i + r_j`.

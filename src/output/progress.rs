@@ -1,7 +1,7 @@
 //! Progress of a long run (fracture, dynamics) on stderr.
 //!
 //! On a terminal: a bar with the position, the run's own numbers and an ETA,
-//! drawn from [`QUIET_FOR`] on (short runs stay silent). Elsewhere (a batch
+//! drawn after 2 s (short runs stay silent). Elsewhere (a batch
 //! job, a pipe, a log file) a bar cannot be drawn, so a line is printed every
 //! [`PROGRESS_SECONDS`], e.g.
 //!

@@ -1,5 +1,8 @@
 //! Sparse direct solvers (faer): Cholesky with the symbolic analysis kept for
-//! reuse, LU as an explicit fallback, and the residual check.
+//! reuse, LU as an explicit fallback, and the residual check: iterative
+//! refinement with the factor ([`refine`]) and, where the residual of a
+//! double-precision product is all round-off, with a more accurate residual
+//! ([`refine_extended`]).
 //!
 //! Pivot failures are reported as the free unknown they concern: faer reports
 //! the pivot index in the permuted ordering, 1-based on the simplicial path and

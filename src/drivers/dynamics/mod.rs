@@ -30,6 +30,15 @@
 //! `dynamics.balance_tolerance` (default 0.2) fails at the record that finds it,
 //! from step 10 on ([`BALANCE_FROM_STEP`]).
 //!
+//! **Divergence** is checked every step, for the cost of one sum: the second
+//! half kick adds up `m |v|²` as it updates the velocities (relaxation: its
+//! residual reduces every force), and a non-finite sum stops the run at that
+//! step, naming the point and the cause (the forced time step when it is above
+//! the stable one, else the magnitudes of the input). The initial state
+//! (initial conditions, prescribed values at t = 0) is checked before the
+//! first step: a kinetic energy, displacement or internal force beyond double
+//! precision is an input error naming its `initial_conditions` entry.
+//!
 //! Prescribed components follow `value · g(t)`
 //! (displacement) or `value · ∫g` (velocity). **Stable step**: bond-based,
 //! `Δt_i = sqrt(2 m_i / Σ w_b/|ξ_b|)` over every bond touching `i`, owned or
