@@ -711,3 +711,52 @@ fn batch_runs_print_progress_lines() {
     let quiet = run("progress-default", &dynamics_scene(""));
     assert!(!quiet.stderr.contains("progress"), "{}", quiet.stderr);
 }
+
+/// Item 10: a shear-model plate whose spacing passes the length checks but at
+/// which the model's own quantities (`1/(|ξ|² m)`) leave double precision is
+/// refused naming regions[0].spacing, statically and in dynamics (at 1e-82 m
+/// it was called a singular shape tensor, at 1e78 m "non-finite value in the
+/// displacement solution"); the same plate at 0.01 m solves.
+#[test]
+fn a_shear_body_beyond_double_precision_names_its_spacing() {
+    let plate = |h: f64, dynamics: bool| {
+        let (density, section) = if dynamics {
+            ("density = 1000.0\n", "[dynamics]\nsteps = 5\n")
+        } else {
+            ("", "")
+        };
+        format!(
+            "[model]\ndimension = \"plane_stress\"\nthickness = 0.01\nkind = \"shear\"\n\
+             [materials.soft]\nyoungs_modulus = 1.0e9\npoisson_ratio = 0.3\n{density}\
+             [[regions]]\nmaterial = \"soft\"\nspacing = {h:e}\n\
+             box = {{ min = [0.0, 0.0], max = [{:e}, {:e}] }}\n\
+             [[boundary]]\nname = \"left\"\nbox = {{ min = [0.0, 0.0], max = [{h:e}, {:e}] }}\n\
+             displacement = {{ x = 0.0, y = 0.0 }}\n\
+             [[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1.0e6, 0.0]\n\
+             {section}",
+            20.0 * h,
+            10.0 * h,
+            10.0 * h
+        )
+    };
+    for dynamics in [false, true] {
+        let ok = run(
+            &format!("shear-scale-ok-{dynamics}"),
+            &plate(0.01, dynamics),
+        );
+        assert_eq!(ok.code, Some(0), "{}", ok.stderr);
+        for h in [1e-82, 1e78] {
+            let r = run(
+                &format!("shear-scale-{h:e}-{dynamics}"),
+                &plate(h, dynamics),
+            );
+            assert_eq!(r.code, Some(2), "{h:e}: {}", r.stderr);
+            assert!(
+                r.stderr.contains("regions[0].spacing")
+                    && r.stderr.contains("floating-point range"),
+                "{h:e}: {}",
+                r.stderr
+            );
+        }
+    }
+}

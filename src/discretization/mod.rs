@@ -222,6 +222,35 @@ fn check_scales(raw: &[RawPoint], scene: &Scene) -> Result<(), InputError> {
     Ok(())
 }
 
+/// The error for a point whose model quantities (`what`, of value `value`)
+/// are not finite or underflow although its inputs passed their checks: a
+/// scale at which a model's intermediate quantities (the shear model's
+/// `1/(|ξ|² m)`) leave double precision. Names the point's source
+/// (`regions[k].spacing`, a point-file line, a mesh element).
+pub fn beyond_double_precision(
+    disc: &Discretization,
+    point: usize,
+    what: &str,
+    value: f64,
+) -> InputError {
+    let p = &disc.points;
+    let field = match p.source[point] {
+        Source::Region(k) => format!("regions[{k}].spacing"),
+        other => other.to_string(),
+    };
+    InputError::new(
+        field,
+        format!(
+            "{what} of point {point} (x = {:?}) is {value:.3e}, outside the floating-point \
+             range: at its spacing ({} m) the model's quantities (e.g. the shear model's \
+             1/(|ξ|² m)) leave double precision; rescale the units (e.g. mm or µm, or km, \
+             instead of m)",
+            p.x[point],
+            crate::error::num(p.spacing[point])
+        ),
+    )
+}
+
 /// Rejects points at identical positions, naming where both come from.
 fn reject_duplicates(raw: &[RawPoint]) -> Result<(), InputError> {
     let mut order: Vec<usize> = (0..raw.len()).collect();

@@ -807,6 +807,15 @@ impl Pipeline {
         rhs: &[f64],
         model_residual: Option<&dyn Fn(&[f64]) -> Vec<f64>>,
     ) -> Result<Solved, Error> {
+        if let Some((point, value)) = self.out_of_range(disc, dofs, k) {
+            return Err(crate::discretization::beyond_double_precision(
+                disc,
+                point,
+                "a stiffness entry",
+                value,
+            )
+            .into());
+        }
         let t = Instant::now();
         if let Err(e) = self.factorize(disc, dofs, k) {
             if !self.factor.is_single() {
@@ -1200,6 +1209,51 @@ impl Pipeline {
         let mut v = self.product(k, rhs);
         self.precondition(k, &mut v);
         t.elapsed().as_secs_f64()
+    }
+
+    /// A point whose stiffness left the floating-point range, with the value:
+    /// a non-finite entry, or a point with intact bonds none of whose free
+    /// components has a normal diagonal entry (the sum of its bonds' positive
+    /// stiffnesses underflowed; a mechanism leaves some component positive).
+    /// Every input passed its checks, so this is a scale at which the model's
+    /// own quantities leave double precision.
+    fn out_of_range(
+        &self,
+        disc: &Discretization,
+        dofs: &DofMap,
+        k: &Stiffness,
+    ) -> Option<(usize, f64)> {
+        let column = |c: usize| self.pattern.col_ptr[c]..self.pattern.col_ptr[c + 1];
+        if let Some((c, v)) = (0..k.n).find_map(|c| {
+            let v = k.values[column(c)].iter().find(|v| !v.is_finite())?;
+            Some((c, *v))
+        }) {
+            return Some((dofs.free_dofs[c].0 as usize, v));
+        }
+        let mut normal = vec![false; disc.points.len()];
+        for c in 0..k.n {
+            let p = column(c).find(|&p| self.pattern.row_idx[p] == c);
+            if p.is_some_and(|p| k.values[p].is_normal()) {
+                normal[dofs.free_dofs[c].0 as usize] = true;
+            }
+        }
+        let suspects: Vec<usize> = dofs
+            .free_dofs
+            .iter()
+            .map(|&(i, _)| i as usize)
+            .filter(|&i| !normal[i])
+            .collect();
+        if suspects.is_empty() {
+            return None;
+        }
+        let touches = disc.bonds.touch_counts(disc.points.len());
+        let point = suspects.into_iter().find(|&i| touches[i] > 0)?;
+        let c = dofs
+            .free_dofs
+            .iter()
+            .position(|&(i, _)| i as usize == point)?;
+        let p = column(c).find(|&p| self.pattern.row_idx[p] == c);
+        Some((point, p.map_or(0.0, |p| k.values[p])))
     }
 
     /// `‖|K||x|‖ / ‖b‖`: ε times it is the round-off floor of a relative

@@ -450,6 +450,16 @@ pub fn run(
                 .enumerate()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((0, f64::INFINITY));
+            if !(stable_dt.is_finite() && stable_dt > 0.0) {
+                // Bond stiffnesses that under- or overflowed at this scale.
+                return Err(crate::discretization::beyond_double_precision(
+                    &disc,
+                    critical_point,
+                    "the stable time step",
+                    stable_dt,
+                )
+                .into());
+            }
             let dt = match dy.time_step {
                 Some(t) if t > stable_dt && !dy.force_time_step => {
                     return Err(InputError::new(
@@ -676,6 +686,25 @@ impl Verlet<'_> {
             (None, Some(i)) => (i, false),
             (None, None) => return Ok(()),
         };
+        if !velocity && crate::geometry::magnitude(&u[point]) == 0.0 {
+            // Forces that are not finite without any displacement: the
+            // model's quantities at this scale leave double precision.
+            let i = f_int
+                .iter()
+                .position(|f| f.iter().any(|x| !x.is_finite()))
+                .unwrap_or(point);
+            return Err(crate::discretization::beyond_double_precision(
+                self.kernel.disc(),
+                i,
+                "the internal force at rest",
+                f_int[i]
+                    .iter()
+                    .copied()
+                    .find(|x| !x.is_finite())
+                    .unwrap_or(0.0),
+            )
+            .into());
+        }
         let x = self.kernel.disc().points.x[point];
         let what = if velocity {
             format!(
