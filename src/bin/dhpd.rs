@@ -154,7 +154,9 @@ fn run_dynamics(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
     drop(disc);
     let staging = output::Staging::new(&dir)?;
     let probes: Vec<usize> = plan.probes.iter().map(|p| p.1).collect();
-    let mut writer = output::dynamics::DynamicsWriter::new(staging.path());
+    let relaxation =
+        scene.dynamics.as_ref().map(|d| d.method) == Some(dhpd::scene::DynamicsMethod::Relaxation);
+    let mut writer = output::dynamics::DynamicsWriter::new(staging.path(), relaxation);
     let solution = dynamics::run(scene, &probes, &mut writer)?;
     let entries = writer.finish();
     output::dynamics::write(

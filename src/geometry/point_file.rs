@@ -10,7 +10,8 @@
 //! columns (positions and volume), `d + 2` (plus the horizon radius) or `d + 3`
 //! (plus a material name from the scene). The volume includes the thickness
 //! (2D) or the area (1D). Without a horizon column a point's horizon is
-//! `horizon_factor × (volume / thickness)^(1/d)`.
+//! `horizon_factor × (volume / thickness)^(1/d)`. A leading UTF-8 byte-order
+//! mark is skipped, as in scenes and meshes.
 
 use super::grid::{RawPoint, Source};
 use crate::error::{approx, echo, echo_list, num, InputError};
@@ -25,6 +26,8 @@ pub fn parse(
     thickness: f64,
     materials: &[Material],
 ) -> Result<Vec<RawPoint>, InputError> {
+    // A UTF-8 byte-order mark is not part of the first row (as for scenes).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut points = Vec::new();
     let mut width = None;
     for (n, line) in text.lines().enumerate() {

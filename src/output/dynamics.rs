@@ -22,15 +22,20 @@ pub struct DynamicsWriter {
     entries: Vec<(f64, String)>,
     /// Created at the first step, when the number of steps is known.
     progress: Option<Progress>,
+    /// A dynamic relaxation (no physical time).
+    relaxation: bool,
 }
 
 impl DynamicsWriter {
-    /// Writes into `dir` (the staging directory).
-    pub fn new(dir: &Path) -> Self {
+    /// Writes into `dir` (the staging directory); `relaxation`: the run is a
+    /// dynamic relaxation (its steps have no physical time, and it ends at its
+    /// tolerance, so the ETA is that of all its steps).
+    pub fn new(dir: &Path, relaxation: bool) -> Self {
         Self {
             dir: dir.to_path_buf(),
             entries: Vec::new(),
             progress: None,
+            relaxation,
         }
     }
 
@@ -49,10 +54,16 @@ impl Observer for DynamicsWriter {
         if step % 16 != 0 {
             return;
         }
+        let relaxation = self.relaxation;
         self.progress
             .get_or_insert_with(|| Progress::new(Some(steps as u64), "step"))
             .update(step as u64, step as f64 / steps.max(1) as f64, || {
-                format!("t = {time:.4e} s, bonds broken {broken}")
+                if relaxation {
+                    "dynamic relaxation (ends at its tolerance, at the latest at the last step)"
+                        .to_string()
+                } else {
+                    format!("t = {time:.4e} s, bonds broken {broken}")
+                }
             });
     }
 

@@ -116,16 +116,14 @@ pub fn read_input_file(path: &Path, field: &str, max_bytes: u64) -> Result<Vec<u
 }
 
 /// Reads a text input file ([`read_input_file`]) as UTF-8 (UTF-16 is recognised
-/// and named) without its leading UTF-8 byte-order mark, if any: scenes, point
-/// files and meshes all accept one.
+/// and named; the parsers skip a leading byte-order mark).
 pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
     let bytes = read_input_file(path, field, max_bytes)?;
     let utf16 = bytes.starts_with(&[0xFF, 0xFE])
         || bytes.starts_with(&[0xFE, 0xFF])
         || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));
     match std::str::from_utf8(&bytes) {
-        // A UTF-8 byte-order mark (as some editors write) is not part of the text.
-        Ok(text) => Ok(text.strip_prefix('\u{feff}').unwrap_or(text).to_string()),
+        Ok(text) => Ok(text.to_string()),
         Err(_) if utf16 => Err(InputError::new(
             field,
             format!(
