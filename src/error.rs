@@ -7,9 +7,124 @@
 //! | 3 | numerical failure: the problem is ill-posed or the solver failed |
 //! | 4 | I/O failure while reading inputs or writing results |
 //! | 130, 143 | interrupted by SIGINT, SIGTERM: partial results removed (`output::interrupt`) |
+//!
+//! Messages clip the user text they echo ([`echo`], [`echo_list`]; applied to
+//! every [`InputError`] by its constructor as a safety net) and print numbers
+//! in a bounded form ([`num`] for given values, [`approx`] for computed ones).
 
-use std::path::PathBuf;
+use std::borrow::Cow;
+use std::path::{Path, PathBuf};
 use thiserror::Error;
+
+/// Longest user text (a key, a name, a value, a point-file row) echoed whole in
+/// a message, in characters; longer text is clipped by [`echo`].
+pub const ECHO_CHARS: usize = 80;
+
+/// Characters kept on each side of the ellipsis of a clipped echo.
+const ECHO_SIDE: usize = ECHO_CHARS / 2 - 2;
+
+/// `text` as echoed in a message: whole up to [`ECHO_CHARS`] characters, else
+/// its first and last 38 characters around an ellipsis (a 10 MiB key is not
+/// echoed whole; both ends stay, so a long path keeps its file name).
+pub fn echo(text: &str) -> Cow<'_, str> {
+    let count = text.chars().count();
+    if count <= ECHO_CHARS {
+        return Cow::Borrowed(text);
+    }
+    let head: String = text.chars().take(ECHO_SIDE).collect();
+    let tail: String = text.chars().skip(count - ECHO_SIDE).collect();
+    Cow::Owned(format!("{head}…{tail}"))
+}
+
+/// A number as a message shows it: its shortest exact form (`0.01`, `3.015`,
+/// `1e9`, `1e-300`), in exponent form outside [1e-3, 1e6), so that no value
+/// prints as a run of hundreds of digits (`{}` prints 1e300 with 301).
+pub fn num(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x:?}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// Most names a message lists (valid materials, groups) before it says how many
+/// there are in all.
+const LISTED: usize = 10;
+
+/// Names as a message lists them: the first ten, each [`echo`]ed, joined by
+/// commas, then how many there are in all; `none` for an empty list.
+pub fn echo_list<'a>(names: impl IntoIterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = names.into_iter().collect();
+    if names.is_empty() {
+        return "none".into();
+    }
+    let shown: Vec<Cow<'_, str>> = names.iter().take(LISTED).map(|n| echo(n)).collect();
+    let mut text = shown.join(", ");
+    if names.len() > LISTED {
+        text.push_str(&format!(", … ({} in all)", names.len()));
+    }
+    text
+}
+
+/// A computed number (a ratio, a count of spacings) as a message shows it:
+/// four decimals in [1e-3, 1e6), else three in exponent form (`1.000e152`).
+pub fn approx(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() || (1e-3..1e6).contains(&x.abs()) {
+        format!("{x:.4}")
+    } else {
+        format!("{x:.3e}")
+    }
+}
+
+/// A path as echoed in a message ([`echo`] of its display form).
+pub fn echo_path(path: &Path) -> String {
+    echo(&path.display().to_string()).into_owned()
+}
+
+/// Clips the user text a message may echo: every span between backticks or
+/// double quotes longer than [`ECHO_CHARS`] characters, and every run without
+/// white space longer than twice that (an unquoted path), by [`echo`].
+fn clip_echoes(message: &str) -> Cow<'_, str> {
+    if message.chars().count() <= ECHO_CHARS {
+        return Cow::Borrowed(message);
+    }
+    // Quoted spans: each quote character opens a span closed by the next one.
+    let mut quoted = String::with_capacity(message.len().min(1 << 16));
+    let mut rest = message;
+    while let Some(open) = rest.find(['`', '"']) {
+        let q = rest[open..].chars().next().expect("a quote");
+        let inner_start = open + q.len_utf8();
+        let Some(len) = rest[inner_start..].find(q) else {
+            break;
+        };
+        quoted.push_str(&rest[..inner_start]);
+        quoted.push_str(&echo(&rest[inner_start..inner_start + len]));
+        quoted.push(q);
+        rest = &rest[inner_start + len + q.len_utf8()..];
+    }
+    quoted.push_str(rest);
+    // Unquoted runs.
+    let mut out = String::with_capacity(quoted.len());
+    let mut run = String::new();
+    let flush = |run: &mut String, out: &mut String| {
+        if run.chars().count() > 2 * ECHO_CHARS {
+            out.push_str(&echo(run));
+        } else {
+            out.push_str(run);
+        }
+        run.clear();
+    };
+    for c in quoted.chars() {
+        if c.is_whitespace() {
+            flush(&mut run, &mut out);
+            out.push(c);
+        } else {
+            run.push(c);
+        }
+    }
+    flush(&mut run, &mut out);
+    Cow::Owned(out)
+}
 
 /// An invalid input: names the field (a dotted path such as `regions[1].spacing`)
 /// and says what would be valid.
@@ -23,12 +138,19 @@ pub struct InputError {
 }
 
 impl InputError {
-    /// Creates an input error for `field`.
+    /// Creates an input error for `field`. User text the field or the message
+    /// echoes is clipped ([`echo`]): each dotted part of the field, and in the
+    /// message every quoted span longer than [`ECHO_CHARS`] characters and every
+    /// unquoted run without white space longer than twice that.
     pub fn new(field: impl Into<String>, message: impl Into<String>) -> Self {
-        Self {
-            field: field.into(),
-            message: message.into(),
-        }
+        let (field, message) = (field.into(), message.into());
+        let field = if field.chars().count() > ECHO_CHARS {
+            field.split('.').map(echo).collect::<Vec<_>>().join(".")
+        } else {
+            field
+        };
+        let message = clip_echoes(&message).into_owned();
+        Self { field, message }
     }
 }
 
@@ -94,14 +216,14 @@ pub enum NumericalError {
     /// The solution failed its residual check, after iterative refinement.
     #[error(
         "solve rejected: relative residual {residual:.3e} exceeds {threshold:.1e} after \
-         {refinement_steps} step(s) of iterative refinement; the system is too ill-conditioned \
-         for double precision (a near-mechanism or an extreme stiffness contrast), or the \
-         factorisation lost accuracy (try solver.method = \"lu\")"
+         {refinement_steps} step(s) of iterative refinement; {hint}"
     )]
     ResidualTooLarge {
         residual: f64,
         threshold: f64,
         refinement_steps: usize,
+        /// Why, and which route (if any) does better.
+        hint: String,
     },
     /// A non-finite number appeared in a result.
     #[error("non-finite value in {what}")]
@@ -124,25 +246,26 @@ pub enum NumericalError {
         limit_bytes: f64,
         limited_by: MemoryLimit,
     },
-    /// An explicit run produced a non-finite state.
+    /// An explicit run produced a non-finite state (checked every step).
     #[error(
         "the explicit run diverged at step {step} (t = {time:e} s): point {point} (x = {position:?}) \
-         has a non-finite displacement or velocity; the time step is too large for the stiffest \
-         point (forced above the stable one?) or a load grows without bound"
+         has a non-finite displacement or velocity, or a kinetic energy beyond double precision; \
+         {cause}; nothing was written"
     )]
     Diverged {
         step: usize,
         time: f64,
         point: usize,
         position: [f64; 3],
+        /// What made it diverge, as far as the driver can tell (the forced
+        /// time step, or the magnitudes of the input).
+        cause: String,
     },
     /// An explicit run lost its energy balance.
     #[error(
         "the explicit run lost its energy balance at step {step} (t = {time:e} s): the error \
          E_kin + E_strain + E_broken + E_damping − W_ext − E_0 is {error:.3e} of the largest \
-         energy, above dynamics.balance_tolerance = {tolerance:e}; the time step is too large \
-         (forced above the stable one?) or the forces are not the gradient of an energy (the \
-         shear model with heavy breakage, the traditional horizons); raise \
+         energy, above dynamics.balance_tolerance = {tolerance:e}; {cause}; raise \
          dynamics.balance_tolerance to accept the run"
     )]
     EnergyBalance {
@@ -150,6 +273,8 @@ pub enum NumericalError {
         time: f64,
         error: f64,
         tolerance: f64,
+        /// The likely cause (the forced time step, or forces without an energy).
+        cause: String,
     },
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
@@ -196,7 +321,7 @@ pub enum Error {
     #[error("numerical failure: {0}")]
     Numerical(#[from] NumericalError),
     /// Reading or writing a file failed.
-    #[error("I/O error on {path}: {source}")]
+    #[error("I/O error on {}: {source}", echo_path(path))]
     Io {
         path: PathBuf,
         source: std::io::Error,

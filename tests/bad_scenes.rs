@@ -432,6 +432,28 @@ const CASES: &[Case] = &[
     c("probe_duplicate_name", &[Add("\n[[output.probes]]\nname = \"tip\"\nat = [0.195, 0.05]\n[[output.probes]]\nname = \"tip\"\nat = [0.105, 0.05]\n")], None, 2, &["output.probes[1].name", "used twice"]),
     c("no_fail_box_selects_no_point", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\nfracture_energy = 100.0"), Add(QS), Add("\n[[fracture.no_fail]]\nbox = { min = [0.5, 0.5], max = [0.6, 0.6] }\n")], None, 2, &["fracture.no_fail[0].box", "selects no point"]),
     c("traction_overflows_the_forces", &[Rep("value = [1.0e6, 0.0]", "value = [1.7e308, 1.7e308]")], None, 2, &["loads[0].value", "not finite"]),
+    // --- issue 17, items 10-12: messages that name the cause ---
+    // Two rows 1e-13 m apart: a duplicate to round-off, named by both lines and the distance.
+    c("point_file_rows_1e_13_apart", &[Add(PF)], Some("0.30 0.05 1e-6\n0.3000000000001 0.05 1e-6\n"), 2, &["point_files[0] (line 2)", "point_files[0] (line 1)", "e-13 m from", "duplicates to round-off"]),
+    // 1e-300 m apart: the distance is measured without underflow, not called 0.
+    c("point_file_rows_1e_300_apart", &[Add(PF)], Some("0.0 0.3 1e-6\n1e-300 0.3 1e-6\n"), 2, &["point_files[0] (line 2)", "1.000e-300 m from"]),
+    // Lengths whose squares leave the normal doubles are refused, naming the field.
+    c("region_spacing_below_the_length_range", &[Whole(BAR_1D), Rep("poisson_ratio = 0.25\n", ""), Rep("spacing = 0.01", "spacing = 1e-160"), Rep("max = [0.1]", "max = [1e-159]"), Rep("max = [0.01]", "max = [1e-160]")], None, 2, &["regions[0].spacing", "1e-160", "[1e-150, 1e150] m"]),
+    c("region_box_beyond_the_length_range", &[Rep("min = [0.0, 0.0], max = [0.2, 0.1]", "min = [1e200, 0.0], max = [1e200, 0.1]")], None, 2, &["regions[0].box", "coordinate 1e200", "1e150"]),
+    c("point_file_spacing_below_the_length_range", &[Add(PF)], Some("0.30 0.05 1e-305\n"), 2, &["point_files[0] (line 1)", "spacing", "[1e-150, 1e150] m"]),
+    // A ratio of 1e152 spacings is printed in exponent form (it had 153 digits).
+    c("horizon_ratio_in_exponent_form", &[Rep("spacing = 0.01", "spacing = 0.01\nhorizon = 1e150")], None, 2, &["regions[0].horizon", "horizon 1e150 is 1.000e152 spacings"]),
+    c("point_file_value_is_clipped", &[Add(PF)], Some("0.30 0.05 1e-6\n0.31 aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa 1e-6\n"), 2, &["point_files[0]", "line 2", "aaaa…aaaa"]),
+    // An initial state beyond double precision names its initial condition (it blamed the time step).
+    c("initial_velocity_beyond_double_precision", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\nvelocity = { x = 1e300 }\n")], None, 2, &["initial_conditions[0].velocity", "1e300 m/s", "kinetic energy"]),
+    c("initial_gaussian_beyond_double_precision", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\ngaussian = { center = [0.1, 0.05], width = 0.02, amplitude = [1e300, 0.0] }\n")], None, 2, &["initial_conditions[0].gaussian", "displacement"]),
+    // A stable step that diverges blames the magnitudes, not the step.
+    c("dynamics_load_beyond_double_precision", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Rep("value = [1.0e6, 0.0]", "value = [1.0e200, 0.0]"), Add("\n[dynamics]\nsteps = 400\nbalance_tolerance = inf\n")], None, 3, &["diverged at step", "within the stable", "a load"]),
+    // A forced unstable step is named as the cause, at the step that diverged.
+    // The iterative route stops at the round-off floor of a 400,000-point chain
+    // (κ ≈ n²); the refusal names the direct route, which solves it.
+    c("iterative_route_on_a_long_chain", &[Whole(BAR_1D), Rep("poisson_ratio = 0.25\n", ""), Rep("spacing = 0.01", "spacing = 2.5e-6"), Rep("max = [0.1]", "max = [1.0]"), Rep("max = [0.01]", "max = [2.5e-6]"), Add("[[loads]]\nname = \"pull\"\nkind = \"traction\"\nface = \"+x\"\nvalue = [1.0]\n[solver]\nmethod = \"iterative\"\n")], None, 3, &["solve rejected", "round-off floor", "solver.method = \"cholesky\" solves directly"]),
+    c("dynamics_forced_unstable_names_the_step", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nsteps = 2000\ntime_step = 1e-4\nforce_time_step = true\nbalance_tolerance = inf\nrecord_every = 1000\n\n[output]\nevery = 1\n")], None, 3, &["diverged at step 71 (t = 7.1e-3 s)", "point 157", "dynamics.force_time_step = true"]),
 
 ];
 /// A per-case temporary directory, removed on drop.
@@ -514,7 +536,11 @@ fn run_scene(dir: &Path, text: &str, json: bool, points: Option<&str>, mode: Mod
         Mode::RunNoOut => cmd.arg("run").arg(&scene),
         Mode::Check => cmd.arg("check").arg(&scene),
     };
-    let o = cmd.current_dir(dir).output().expect("start dhpd");
+    let o = cmd
+        .current_dir(dir)
+        .env_remove("DHPD_PROGRESS_SECONDS")
+        .output()
+        .expect("start dhpd");
     let entries: Vec<String> = std::fs::read_dir(dir)
         .expect("list the case directory")
         .filter_map(|e| e.ok())
@@ -547,6 +573,12 @@ fn run_case(case: &Case) -> Outcome {
     run_scene(&dir.0, &text, json, case.points, mode)
 }
 
+/// Longest run of digits a message may print (a double in shortest form has 17).
+const MAX_DIGITS: usize = 24;
+
+/// Largest stderr of a failing case (echoed user text is clipped to 80 characters).
+const MAX_STDERR_BYTES: usize = 4096;
+
 /// Everything wrong with an outcome, empty when the case behaves as required.
 fn problems(case: &Case, o: &Outcome) -> Vec<String> {
     let mut p = Vec::new();
@@ -560,6 +592,18 @@ fn problems(case: &Case, o: &Outcome) -> Vec<String> {
     }
     if o.stderr.contains("panicked") {
         p.push("the binary panicked".into());
+    }
+    // Numbers in messages are in shortest or exponent form (1e300 printed
+    // with `{}` has 301 digits), and echoed user text is clipped.
+    if let Some(run) = o
+        .stderr
+        .split(|c: char| !c.is_ascii_digit())
+        .find(|run| run.len() > MAX_DIGITS)
+    {
+        p.push(format!("stderr holds a run of {} digits", run.len()));
+    }
+    if o.stderr.len() > MAX_STDERR_BYTES {
+        p.push(format!("stderr holds {} bytes", o.stderr.len()));
     }
     if o.out_exists {
         p.push("the --out directory exists".into());

@@ -3,7 +3,7 @@
 //! degrees of freedom are adjacent columns of `K`).
 
 use crate::discretization::{groups, Discretization};
-use crate::error::InputError;
+use crate::error::{num, InputError};
 use crate::scene::{Prescribed, Selection};
 
 /// Marker for a prescribed degree of freedom in [`DofMap::free_index`].
@@ -71,7 +71,7 @@ impl DofMap {
                             Some((old, other)) if old != v => {
                                 return Err(InputError::new(format!("boundary[{k}].displacement"), format!(
                                     "point {i} at {:?} is also in boundary[{other}] with a different value \
-                                     for component {c} ({old} vs {v}); a degree of freedom takes one value", points.x[i])));
+                                     for component {c} ({} vs {}); a degree of freedom takes one value", points.x[i], num(old), num(v))));
                             }
                             Some((_, other)) => shared[other] += 1,
                             None => value[i][c] = Some((v, k)),

@@ -135,7 +135,16 @@ fn check_body(
 fn describe(v: &[f64; 6], d: usize, c: &[f64; 3], size: f64) -> String {
     let fmt = |a: &[f64]| {
         a.iter()
-            .map(|x| format!("{:.3}", if x.abs() < 5e-4 { 0.0 } else { *x }))
+            .map(|x| {
+                let x = if x.abs() < 5e-4 { 0.0 } else { *x };
+                // Directions are unit vectors; a centre of rotation far from the
+                // origin (coordinates of 1e100 m) is shown in exponent form.
+                if x.abs() < 1e6 {
+                    format!("{x:.3}")
+                } else {
+                    format!("{x:.3e}")
+                }
+            })
             .collect::<Vec<_>>()
             .join(", ")
     };

@@ -174,6 +174,31 @@ impl Stiffness {
         y
     }
 
+    /// `b − K x` carried in double-double precision (each product split
+    /// exactly by an FMA, the sums compensated) and rounded once, so it is
+    /// accurate to about ε of the result rather than ε of `|K||x|`: what
+    /// iterative refinement needs when the residual of a double-precision
+    /// product is all round-off ([`crate::solve::refine_extended`]).
+    pub fn residual_extended(&self, pattern: &Pattern, x: &[f64], b: &[f64]) -> Vec<f64> {
+        // Each row's sum as an unevaluated pair (hi, lo).
+        let mut hi = b.to_vec();
+        let mut lo = vec![0.0; self.n];
+        for (col, &xc) in x.iter().enumerate() {
+            for k in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
+                let row = pattern.row_idx[k];
+                let p = self.values[k] * xc;
+                let p_err = self.values[k].mul_add(xc, -p);
+                // hi − p exactly as s + e (Knuth's two-sum).
+                let s = hi[row] - p;
+                let v = s - hi[row];
+                let e = (hi[row] - (s - v)) + (-p - v);
+                hi[row] = s;
+                lo[row] += e - p_err;
+            }
+        }
+        hi.iter().zip(&lo).map(|(h, l)| h + l).collect()
+    }
+
     /// `y = K x`.
     pub fn mul(&self, pattern: &Pattern, x: &[f64]) -> Vec<f64> {
         let mut y = vec![0.0; self.n];
@@ -259,4 +284,32 @@ pub fn fill_columns<M: Model>(
                 }
             },
         );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `1 − 3 · fl(1/3)` is 2⁻⁵⁴; a double-precision product rounds it to 0.
+    #[test]
+    fn extended_residual_keeps_what_a_double_product_rounds_away() {
+        let pattern = Pattern {
+            row_offsets: Vec::new(),
+            row_points: Vec::new(),
+            in_offsets: Vec::new(),
+            in_bonds: Vec::new(),
+            col_ptr: vec![0, 1],
+            row_idx: vec![0],
+        };
+        let k = Stiffness {
+            n: 1,
+            values: vec![3.0],
+        };
+        let x = [1.0 / 3.0];
+        assert_eq!(k.mul(&pattern, &x), vec![1.0]);
+        assert_eq!(
+            k.residual_extended(&pattern, &x, &[1.0]),
+            vec![2f64.powi(-54)]
+        );
+    }
 }

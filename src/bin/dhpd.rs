@@ -129,7 +129,7 @@ fn run_fracture(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
     let settings = scene.quasi_static.as_ref().expect("a fracture scene");
     let steps =
         (settings.strategy != dhpd::scene::Strategy::Event).then_some(settings.steps as u64);
-    let mut series = SeriesWriter::new(staging.path(), steps);
+    let mut series = SeriesWriter::new(staging.path(), steps, settings.max_load_factor);
     let solution = quasi_static::run(scene, prepared, &mut series)?;
     let entries = series.finish();
     output::write_quasi_static(
@@ -154,7 +154,9 @@ fn run_dynamics(scene: &Scene, out: Option<&Path>) -> Result<(), Error> {
     drop(disc);
     let staging = output::Staging::new(&dir)?;
     let probes: Vec<usize> = plan.probes.iter().map(|p| p.1).collect();
-    let mut writer = output::dynamics::DynamicsWriter::new(staging.path());
+    let relaxation =
+        scene.dynamics.as_ref().map(|d| d.method) == Some(dhpd::scene::DynamicsMethod::Relaxation);
+    let mut writer = output::dynamics::DynamicsWriter::new(staging.path(), relaxation);
     let solution = dynamics::run(scene, &probes, &mut writer)?;
     let entries = writer.finish();
     output::dynamics::write(

@@ -135,11 +135,7 @@ fn named<'a>(
             field,
             format!(
                 "no physical group \"{name}\" in the meshes; named groups: {}",
-                if known.is_empty() {
-                    "none".to_string()
-                } else {
-                    known.join(", ")
-                }
+                crate::error::echo_list(known)
             ),
         ));
     }

@@ -7,6 +7,12 @@
 //! (formulation Sec. 6) and an intact flag per bond. The dual horizon
 //! `H'_i = { j : i ∈ H_j }` is implied and never stored here.
 //!
+//! Imported points (point files, meshes) are checked like grid regions: a
+//! spacing within [`crate::scene::MIN_LENGTH`, `crate::scene::MAX_LENGTH`],
+//! coordinates within ±`MAX_LENGTH`, a bond stiffness in the floating-point
+//! range. Points at the same position, or closer than 1e-9 of a spacing, are
+//! refused, naming both sources.
+//!
 //! The partial-volume rule is chosen per scene ([`partial_volume`]); the
 //! default counts the exact overlap of each neighbour's equivalent disc or ball
 //! with the horizon, so bonds reach up to `δ_i + r_j`.
@@ -175,6 +181,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     if raw.is_empty() {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
+    check_scales(&raw, scene)?;
     reject_duplicates(&raw)?;
     overlap::reject_overlaps(&raw, &scene.regions, d)?;
     if scene.horizons == HorizonMode::Constant {
@@ -185,6 +192,63 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
         points: raw,
         mesh_groups,
     })
+}
+
+/// Refuses an imported point (point file, mesh) whose spacing or coordinates
+/// lie outside the lengths double precision holds for the bond computations
+/// ([`crate::scene::length_in_range`]) or whose bond stiffness is out of range
+/// (regions are checked with the scene).
+fn check_scales(raw: &[RawPoint], scene: &Scene) -> Result<(), InputError> {
+    for p in raw {
+        if matches!(p.source, Source::Region(_)) {
+            continue;
+        }
+        let field = p.source.to_string();
+        crate::scene::length_in_range(&field, "spacing", p.spacing)?;
+        for &x in &p.x[..scene.d()] {
+            crate::scene::length_in_range(&field, "coordinate", x)?;
+        }
+        crate::scene::bond_stiffness_in_range(
+            &field,
+            &field,
+            scene.dimension,
+            &scene.materials[p.material as usize],
+            p.spacing,
+            p.horizon,
+            p.volume,
+            scene.thickness,
+        )?;
+    }
+    Ok(())
+}
+
+/// The error for a point whose model quantities (`what`, of value `value`)
+/// are not finite or underflow although its inputs passed their checks: a
+/// scale at which a model's intermediate quantities (the shear model's
+/// `1/(|ξ|² m)`) leave double precision. Names the point's source
+/// (`regions[k].spacing`, a point-file line, a mesh element).
+pub fn beyond_double_precision(
+    disc: &Discretization,
+    point: usize,
+    what: &str,
+    value: f64,
+) -> InputError {
+    let p = &disc.points;
+    let field = match p.source[point] {
+        Source::Region(k) => format!("regions[{k}].spacing"),
+        other => other.to_string(),
+    };
+    InputError::new(
+        field,
+        format!(
+            "{what} of point {point} (x = {:?}) is {value:.3e}, outside the floating-point \
+             range: at its spacing ({} m) the model's quantities (e.g. the shear model's \
+             1/(|ξ|² m)) leave double precision; rescale the units (e.g. mm or µm, or km, \
+             instead of m)",
+            p.x[point],
+            crate::error::num(p.spacing[point])
+        ),
+    )
 }
 
 /// Rejects points at identical positions, naming where both come from.

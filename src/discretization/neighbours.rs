@@ -124,6 +124,27 @@ impl Budget {
 
 type Family = Vec<(u32, f64)>;
 
+/// Distance, relative to the spacing, below which two points are duplicates to
+/// round-off: the stretch of a bond between them has no meaningful direction.
+const NEAR_DUPLICATE: f64 = 1e-9;
+
+/// The error for points `i` and `j` closer than [`NEAR_DUPLICATE`] spacings:
+/// names where both come from (a region, a point-file line, a mesh element)
+/// and their distance (exact duplicates are refused before the search).
+fn near_duplicate(points: &Points, i: usize, j: usize) -> InputError {
+    let (a, b) = (i.min(j), i.max(j));
+    let distance = crate::geometry::magnitude(&sub(&points.x[b], &points.x[a]));
+    InputError::new(
+        points.source[b].to_string(),
+        format!(
+            "the point at {:?} lies {distance:.3e} m from the point of {} at {:?}, within \
+             {NEAR_DUPLICATE:e} of the spacing {:.3e} m: the two are duplicates to round-off \
+             (a bond between them has no direction); remove one or move it",
+            points.x[b], points.source[a], points.x[a], points.spacing[i]
+        ),
+    )
+}
+
 fn families<const K: usize>(
     points: &Points,
     cracks: &[Crack],
@@ -164,15 +185,8 @@ fn families<const K: usize>(
                     continue;
                 }
                 let r = norm(&sub(&points.x[j], &points.x[i]));
-                if r <= 1e-9 * points.spacing[i] {
-                    return Err(InputError::new(
-                        "points",
-                        format!(
-                            "points {i} and {j} coincide at {:?}; remove duplicates",
-                            points.x[i]
-                        ),
-                    )
-                    .into());
+                if r <= NEAR_DUPLICATE * points.spacing[i] {
+                    return Err(near_duplicate(points, i, j).into());
                 }
                 let factor = pv.factor(r, delta, points.spacing[j]);
                 if factor > 0.0

@@ -257,7 +257,15 @@ pub fn solve_with<M: Model>(
     timings.assembly = t.elapsed().as_secs_f64();
 
     let asymmetry = pipeline.asymmetry(&stiffness);
-    let solved = pipeline.solve(&disc, &dofs, &stiffness, &rhs)?;
+    // The model's residual, from the bond forces (pipeline::solve_with_residual).
+    let model_residual = |x: &[f64]| -> Vec<f64> {
+        let f_int = internal_forces(model, &disc, &dofs.expand(x), true);
+        dofs.free_dofs
+            .iter()
+            .map(|&(i, c)| f_ext[i as usize][c as usize] + f_int[i as usize][c as usize])
+            .collect()
+    };
+    let solved = pipeline.solve_with_residual(&disc, &dofs, &stiffness, &rhs, &model_residual)?;
     let report = &solved.report;
     timings.numeric_factorization = report.factor_seconds;
     if report.refinement_steps > 0 {
@@ -277,12 +285,15 @@ pub fn solve_with<M: Model>(
             .map(|i| model.stress(&disc, i, &u).unwrap_or_default())
             .collect::<Vec<_>>()
     });
-    if stress
-        .as_ref()
-        .is_some_and(|s| s.iter().flatten().flatten().any(|v| !v.is_finite()))
-    {
+    if let Some(i) = stress.as_ref().and_then(|s| {
+        s.iter()
+            .position(|b| b.iter().flatten().any(|v| !v.is_finite()))
+    }) {
         return Err(NumericalError::NonFinite {
-            what: "the recovered stress".into(),
+            what: format!(
+                "the recovered stress of point {i} (x = {:?}); nothing was written",
+                disc.points.x[i]
+            ),
         }
         .into());
     }

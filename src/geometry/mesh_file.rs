@@ -157,17 +157,12 @@ pub fn import(
 
 /// The names of the mesh's named groups of dimension `dim`.
 fn names(mesh: &gmsh::Mesh, dim: usize) -> String {
-    let list: Vec<&str> = mesh
-        .groups
-        .iter()
-        .filter(|g| !g.name.is_empty() && g.dim == dim)
-        .map(|g| g.name.as_str())
-        .collect();
-    if list.is_empty() {
-        "none".into()
-    } else {
-        list.join(", ")
-    }
+    crate::error::echo_list(
+        mesh.groups
+            .iter()
+            .filter(|g| !g.name.is_empty() && g.dim == dim)
+            .map(|g| g.name.as_str()),
+    )
 }
 
 /// The cells of each node (CSR: offsets, cells).

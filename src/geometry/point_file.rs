@@ -10,10 +10,11 @@
 //! columns (positions and volume), `d + 2` (plus the horizon radius) or `d + 3`
 //! (plus a material name from the scene). The volume includes the thickness
 //! (2D) or the area (1D). Without a horizon column a point's horizon is
-//! `horizon_factor × (volume / thickness)^(1/d)`.
+//! `horizon_factor × (volume / thickness)^(1/d)`. A leading UTF-8 byte-order
+//! mark is skipped, as in scenes and meshes.
 
 use super::grid::{RawPoint, Source};
-use crate::error::InputError;
+use crate::error::{approx, echo, echo_list, num, InputError};
 use crate::scene::{Material, PointFile};
 
 /// Parses point-file text. `field` names the file in errors (`point_files[0]`).
@@ -25,6 +26,8 @@ pub fn parse(
     thickness: f64,
     materials: &[Material],
 ) -> Result<Vec<RawPoint>, InputError> {
+    // A UTF-8 byte-order mark is not part of the first row (as for scenes).
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let mut points = Vec::new();
     let mut width = None;
     for (n, line) in text.lines().enumerate() {
@@ -59,11 +62,14 @@ pub fn parse(
         let number = |k: usize, what: &str| -> Result<f64, InputError> {
             let v: f64 = cols[k]
                 .parse()
-                .map_err(|_| at(format!("{what} \"{}\" is not a number", cols[k])))?;
+                .map_err(|_| at(format!("{what} \"{}\" is not a number", echo(cols[k]))))?;
             if v.is_finite() {
                 Ok(v)
             } else {
-                Err(at(format!("{what} is {v}; only finite numbers are valid")))
+                Err(at(format!(
+                    "{what} is {}; only finite numbers are valid",
+                    num(v)
+                )))
             }
         };
         let mut x = [0.0; 3];
@@ -72,19 +78,21 @@ pub fn parse(
         }
         let volume = number(d, "volume")?;
         if volume <= 0.0 {
-            return Err(at(format!("volume {volume} must be positive")));
+            return Err(at(format!("volume {} must be positive", num(volume))));
         }
         let spacing = (volume / if d < 3 { thickness } else { 1.0 }).powf(1.0 / d as f64);
         if !(spacing.is_finite() && spacing > 0.0) {
             return Err(at(format!(
-                "volume {volume} gives an equivalent spacing (volume / thickness)^(1/{d}) = {spacing} \
-                 outside the floating-point range"
+                "volume {} gives an equivalent spacing (volume / thickness)^(1/{d}) = {} \
+                 outside the floating-point range",
+                num(volume),
+                num(spacing)
             )));
         }
         let horizon = if cols.len() >= d + 2 {
             let h = number(d + 1, "horizon")?;
             if h <= 0.0 {
-                return Err(at(format!("horizon {h} must be positive")));
+                return Err(at(format!("horizon {} must be positive", num(h))));
             }
             h
         } else {
@@ -92,17 +100,20 @@ pub fn parse(
         };
         if !horizon.is_finite() {
             return Err(at(format!(
-                "the horizon ({} × spacing {spacing}) overflows",
-                file.horizon_factor
+                "the horizon ({} × spacing {}) overflows",
+                num(file.horizon_factor),
+                num(spacing)
             )));
         }
         let factor = crate::scene::MAX_HORIZON_FACTOR;
         if horizon > factor * spacing {
             return Err(at(format!(
-                "horizon {horizon} is {:.4} times the point's equivalent spacing {spacing} \
+                "horizon {} is {} times the point's equivalent spacing {} \
                  ((volume / thickness)^(1/{d})): implausibly large (above {factor}); typical \
                  horizons are 2 to 5 spacings",
-                horizon / spacing
+                num(horizon),
+                approx(horizon / spacing),
+                num(spacing)
             )));
         }
         let material = if cols.len() == d + 3 {
@@ -114,7 +125,7 @@ pub fn parse(
                     let known: Vec<_> = materials.iter().map(|m| m.name.as_str()).collect();
                     at(format!(
                         "unknown material \"{name}\"; defined: {}",
-                        known.join(", ")
+                        echo_list(known)
                     ))
                 })?
         } else {

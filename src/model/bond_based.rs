@@ -112,15 +112,12 @@ impl BondBased {
         let j = disc.bonds.neighbour[b] as usize;
         let xi = sub(&p.x[j], &p.x[i]);
         let len = norm(&xi);
-        let scale = self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b]
-            / (len * len * len);
-        let mut k = [[0.0; 3]; 3];
-        for r in 0..3 {
-            for c in 0..3 {
-                k[r][c] = scale * xi[r] * xi[c];
-            }
-        }
-        k
+        // `k e ⊗ e` with the unit vector: `ξ ⊗ ξ / |ξ|³` would under- or
+        // overflow at spacings far from 1 m (|ξ|³ = 1e-450 at 1e-150 m).
+        let e = xi.map(|v| v / len);
+        let scale =
+            self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b] / len;
+        std::array::from_fn(|r| std::array::from_fn(|c| scale * e[r] * e[c]))
     }
 }
 

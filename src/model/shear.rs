@@ -503,31 +503,34 @@ fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Ow
 }
 
 /// Inverse of the leading d × d block (zeros elsewhere); `None` if it is singular
-/// relative to its size (determinant below 1e-10 of the largest diagonal entry
-/// to the power d).
+/// relative to its size (the determinant of the block divided by its largest
+/// diagonal entry below 1e-10). The block is scaled to a unit diagonal first,
+/// so its determinant neither under- nor overflows at any length scale (a
+/// spacing of 1e-80 m gives entries of 1e-160 and a determinant of 1e-320).
 fn invert(k: &Mat3, d: usize) -> Option<Mat3> {
     let scale = (0..d).map(|a| k[a][a]).fold(0.0, f64::max);
-    if scale <= 0.0 {
+    if !(scale > 0.0 && scale.is_finite()) {
         return None;
     }
+    let unit: Mat3 = std::array::from_fn(|r| std::array::from_fn(|c| k[r][c] / scale));
     let mut inv = [[0.0; 3]; 3];
     if d == 2 {
-        let m = nalgebra::Matrix2::new(k[0][0], k[0][1], k[1][0], k[1][1]);
-        if m.determinant() <= 1e-10 * scale * scale {
+        let m = nalgebra::Matrix2::new(unit[0][0], unit[0][1], unit[1][0], unit[1][1]);
+        if m.determinant() <= 1e-10 {
             return None;
         }
         let m = m.try_inverse()?;
         for r in 0..2 {
             for c in 0..2 {
-                inv[r][c] = m[(r, c)];
+                inv[r][c] = m[(r, c)] / scale;
             }
         }
     } else {
-        let m = to_matrix(k);
-        if m.determinant() <= 1e-10 * scale * scale * scale {
+        let m = to_matrix(&unit);
+        if m.determinant() <= 1e-10 {
             return None;
         }
-        inv = from_matrix(&m.try_inverse()?);
+        inv = from_matrix(&m.try_inverse()?).map(|row| row.map(|v| v / scale));
     }
     Some(inv)
 }

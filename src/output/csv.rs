@@ -148,14 +148,30 @@ pub fn write_load_displacement(path: &Path, s: &QuasiStaticSolution) -> Result<(
             .iter()
             .map(|f| format!(",{}", row(f, d)))
             .collect();
-        let numbers = [r.load_factor, r.displacement, r.residual, r.wall_time];
-        if numbers
+        let named = [
+            ("load_factor", r.load_factor),
+            ("displacement", r.displacement),
+            ("residual", r.residual),
+            ("wall_time", r.wall_time),
+        ];
+        let reactions_named = s.set_names.iter().zip(&r.reactions).flat_map(|(name, f)| {
+            AXES[..d]
+                .iter()
+                .zip(f)
+                .map(move |(a, v)| (format!("reaction_{name}_{a}"), *v))
+        });
+        if let Some((column, value)) = named
             .iter()
-            .chain(r.reactions.iter().flatten())
-            .any(|v| !v.is_finite())
+            .map(|(c, v)| (c.to_string(), *v))
+            .chain(reactions_named)
+            .find(|(_, v)| !v.is_finite())
         {
             return Err(NumericalError::NonFinite {
-                what: format!("the record of step {}", r.step),
+                what: format!(
+                    "{column} ({value}) of step {} to be written to {}; nothing was written",
+                    r.step,
+                    path.display()
+                ),
             }
             .into());
         }

@@ -2,49 +2,47 @@
 //! `output.every` steps and at `output.steps`, with displacement, velocity and
 //! damage), `history.csv` (energies, balance error, bonds broken, reactions),
 //! `probes.csv` (displacement, velocity and damage of each probe), the final
-//! state (`points.vtu`, `points.csv`) and `summary.json`; a progress bar with
-//! ETA on stderr for runs longer than a few seconds, silent when stderr is not
-//! a terminal. Everything goes through a staging directory (no partial result).
+//! state (`points.vtu`, `points.csv`) and `summary.json`; progress on stderr
+//! (step, time, bonds broken, ETA): a bar on a terminal, a line every 30 s
+//! otherwise ([`super::progress`]). Everything goes through a staging
+//! directory (no partial result).
 
 use super::csv::{header, row};
+use super::progress::Progress;
 use super::{vtu, Plan, PointData, Staging};
 use crate::drivers::dynamics::{DynamicsSolution, Observer, Snapshot};
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
-use indicatif::{ProgressBar, ProgressStyle};
 use std::fmt::Write;
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
-
-/// Runs shorter than this show no progress bar.
-const QUIET_FOR: Duration = Duration::from_secs(2);
 
 /// Writes the series' files and shows progress while a run goes.
 pub struct DynamicsWriter {
     dir: PathBuf,
     entries: Vec<(f64, String)>,
-    bar: Option<ProgressBar>,
-    start: Instant,
-    terminal: bool,
+    /// Created at the first step, when the number of steps is known.
+    progress: Option<Progress>,
+    /// A dynamic relaxation (no physical time).
+    relaxation: bool,
 }
 
 impl DynamicsWriter {
-    /// Writes into `dir` (the staging directory).
-    pub fn new(dir: &Path) -> Self {
+    /// Writes into `dir` (the staging directory); `relaxation`: the run is a
+    /// dynamic relaxation (its steps have no physical time, and it ends at its
+    /// tolerance, so the ETA is that of all its steps).
+    pub fn new(dir: &Path, relaxation: bool) -> Self {
         Self {
             dir: dir.to_path_buf(),
             entries: Vec::new(),
-            bar: None,
-            start: Instant::now(),
-            terminal: std::io::stderr().is_terminal(),
+            progress: None,
+            relaxation,
         }
     }
 
-    /// The `(time, file)` entries written; ends the progress bar.
+    /// The `(time, file)` entries written; ends the progress display.
     pub fn finish(mut self) -> Vec<(f64, String)> {
-        if let Some(bar) = self.bar.take() {
-            bar.finish_and_clear();
+        if let Some(p) = &mut self.progress {
+            p.finish();
         }
         self.entries
     }
@@ -52,21 +50,21 @@ impl DynamicsWriter {
 
 impl Observer for DynamicsWriter {
     fn progress(&mut self, step: usize, steps: usize, time: f64, broken: usize) {
-        if !self.terminal || step % 16 != 0 || self.start.elapsed() < QUIET_FOR {
+        // Every 16th step: the clock is read once per 16 steps.
+        if step % 16 != 0 {
             return;
         }
-        let elapsed = self.start.elapsed();
-        let bar = self.bar.get_or_insert_with(|| {
-            let bar = ProgressBar::new(steps as u64);
-            if let Ok(style) = ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:30}] step {pos}/{len}, ETA {eta} | {msg}",
-            ) {
-                bar.set_style(style.progress_chars("=> "));
-            }
-            bar.with_elapsed(elapsed)
-        });
-        bar.set_position(step as u64);
-        bar.set_message(format!("t = {time:.4e}, bonds broken {broken}"));
+        let relaxation = self.relaxation;
+        self.progress
+            .get_or_insert_with(|| Progress::new(Some(steps as u64), "step"))
+            .update(step as u64, step as f64 / steps.max(1) as f64, || {
+                if relaxation {
+                    "dynamic relaxation (ends at its tolerance, at the latest at the last step)"
+                        .to_string()
+                } else {
+                    format!("t = {time:.4e} s, bonds broken {broken}")
+                }
+            });
     }
 
     fn snapshot(&mut self, s: &Snapshot) -> Result<(), Error> {
@@ -86,35 +84,56 @@ impl Observer for DynamicsWriter {
     }
 }
 
+/// Refuses a non-finite number in the history or the probes, naming its
+/// column and step (the run checks its state every step, so this is a last
+/// guard).
 fn check_finite(solution: &DynamicsSolution) -> Result<(), Error> {
-    let finite = solution.records.iter().all(|r| {
-        [
-            r.time,
-            r.kinetic,
-            r.strain,
-            r.broken_energy,
-            r.damping,
-            r.external_work,
-            r.balance_error,
-            r.residual,
-        ]
-        .iter()
-        .chain(r.reactions.iter().flatten())
-        .chain(
-            r.probes
-                .iter()
-                .flat_map(|p| p.0.iter().chain(&p.1).chain([&p.2])),
-        )
-        .all(|v| v.is_finite())
-    });
-    if finite {
-        Ok(())
-    } else {
-        Err(NumericalError::NonFinite {
-            what: "the run's history (energies, reactions or probes)".into(),
+    for r in &solution.records {
+        let named = [
+            ("time", r.time),
+            ("kinetic", r.kinetic),
+            ("strain", r.strain),
+            ("broken_energy", r.broken_energy),
+            ("damping", r.damping),
+            ("external_work", r.external_work),
+            ("balance_error", r.balance_error),
+            ("residual", r.residual),
+        ];
+        let bad = named
+            .iter()
+            .find(|(_, v)| !v.is_finite())
+            .map(|(c, v)| (format!("{c} of history.csv"), *v))
+            .or_else(|| {
+                solution
+                    .set_names
+                    .iter()
+                    .zip(&r.reactions)
+                    .find_map(|(name, f)| {
+                        let v = f.iter().find(|v| !v.is_finite())?;
+                        Some((format!("reaction of {name} in history.csv"), *v))
+                    })
+            })
+            .or_else(|| {
+                r.probes.iter().enumerate().find_map(|(k, p)| {
+                    let v =
+                        p.0.iter()
+                            .chain(&p.1)
+                            .chain([&p.2])
+                            .find(|v| !v.is_finite())?;
+                    Some((format!("probe {k} in probes.csv"), *v))
+                })
+            });
+        if let Some((what, value)) = bad {
+            return Err(NumericalError::NonFinite {
+                what: format!(
+                    "the {what} ({value}) at step {}; nothing was written",
+                    r.step
+                ),
+            }
+            .into());
         }
-        .into())
     }
+    Ok(())
 }
 
 fn write_history(path: &Path, s: &DynamicsSolution) -> Result<(), Error> {

@@ -7,6 +7,7 @@ pub mod csv;
 pub mod dynamics;
 pub mod interrupt;
 pub mod matrix_market;
+pub mod progress;
 pub mod series;
 pub mod summary;
 pub mod vtu;

@@ -1,33 +1,32 @@
 //! The observer of a fracture run: a VTU file for every step the scene's output
 //! asks for (`output.every`, `output.steps`), listed in `series.pvd` by load
-//! factor, and a progress bar on stderr (step, load factor, bonds broken, ETA)
-//! for runs longer than a few seconds, silent when stderr is not a terminal.
+//! factor, and progress on stderr (step, load factor, bonds broken, ETA): a bar
+//! on a terminal, a line every 30 s otherwise ([`super::progress`]).
 
+use super::progress::Progress;
 use super::{vtu, PointData};
 use crate::drivers::quasi_static::{Observer, Snapshot, StepRecord};
 use crate::error::Error;
-use indicatif::{ProgressBar, ProgressStyle};
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
-use std::time::{Duration, Instant};
-
-/// Runs shorter than this show no progress bar.
-const QUIET_FOR: Duration = Duration::from_secs(2);
 
 /// Writes the series' step files into a directory and shows progress.
 pub struct SeriesWriter {
     dir: PathBuf,
     entries: Vec<(f64, String)>,
     progress: Progress,
+    /// The run's maximal load factor (the ETA extrapolates by λ / max).
+    max_load_factor: f64,
 }
 
 impl SeriesWriter {
-    /// Writes into `dir`; `steps` is the number of load steps when known (stepped strategies).
-    pub fn new(dir: &Path, steps: Option<u64>) -> Self {
+    /// Writes into `dir`; `steps` is the number of load steps when known
+    /// (stepped strategies; else events are counted).
+    pub fn new(dir: &Path, steps: Option<u64>, max_load_factor: f64) -> Self {
         Self {
             dir: dir.to_path_buf(),
             entries: Vec::new(),
-            progress: Progress::new(steps),
+            progress: Progress::new(steps, if steps.is_some() { "step" } else { "event" }),
+            max_load_factor,
         }
     }
 
@@ -40,7 +39,16 @@ impl SeriesWriter {
 
 impl Observer for SeriesWriter {
     fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error> {
-        self.progress.update(record);
+        self.progress.update(
+            record.step as u64,
+            record.load_factor / self.max_load_factor,
+            || {
+                format!(
+                    "load factor {:.4e} of {:.4e}, bonds broken {}",
+                    record.load_factor, self.max_load_factor, record.broken_total
+                )
+            },
+        );
         if let Some(s) = snapshot {
             let file = format!("step_{:06}.vtu", s.step);
             vtu::write(
@@ -56,58 +64,5 @@ impl Observer for SeriesWriter {
             self.entries.push((s.load_factor, file));
         }
         Ok(())
-    }
-}
-
-/// A progress bar that appears only on a terminal and only after [`QUIET_FOR`].
-struct Progress {
-    bar: Option<ProgressBar>,
-    start: Instant,
-    steps: Option<u64>,
-    terminal: bool,
-}
-
-impl Progress {
-    fn new(steps: Option<u64>) -> Self {
-        Self {
-            bar: None,
-            start: Instant::now(),
-            steps,
-            terminal: std::io::stderr().is_terminal(),
-        }
-    }
-
-    fn update(&mut self, record: &StepRecord) {
-        if !self.terminal || self.start.elapsed() < QUIET_FOR {
-            return;
-        }
-        let (steps, elapsed) = (self.steps, self.start.elapsed());
-        let bar = self.bar.get_or_insert_with(|| {
-            let (bar, template) = match steps {
-                Some(n) => (
-                    ProgressBar::new(n),
-                    "{elapsed_precise} [{bar:30}] step {pos}/{len}, ETA {eta} | {msg}",
-                ),
-                None => (
-                    ProgressBar::new_spinner(),
-                    "{elapsed_precise} {spinner} event {pos} | {msg}",
-                ),
-            };
-            if let Ok(style) = ProgressStyle::with_template(template) {
-                bar.set_style(style.progress_chars("=> "));
-            }
-            bar.with_elapsed(elapsed)
-        });
-        bar.set_position(record.step as u64);
-        bar.set_message(format!(
-            "load factor {:.4e}, bonds broken {}",
-            record.load_factor, record.broken_total
-        ));
-    }
-
-    fn finish(&mut self) {
-        if let Some(bar) = self.bar.take() {
-            bar.finish_and_clear();
-        }
     }
 }

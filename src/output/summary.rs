@@ -58,14 +58,23 @@ pub fn write(
         reactions: &s.reactions,
         loads: &s.loads,
     };
-    let finite = s.residual.is_finite()
-        && max_displacement.is_finite()
-        && s.reactions
+    let bad = [
+        ("relative_residual", s.residual),
+        ("max_displacement", max_displacement),
+    ]
+    .into_iter()
+    .map(|(c, v)| (c.to_string(), v))
+    .chain(s.reactions.iter().flat_map(|r| {
+        r.force
             .iter()
-            .all(|r| r.force.iter().all(|v| v.is_finite()));
-    if !finite {
+            .map(move |v| (format!("reaction of {}", r.name), *v))
+    }))
+    .find(|(_, v)| !v.is_finite());
+    if let Some((what, value)) = bad {
         return Err(NumericalError::NonFinite {
-            what: "the summary (residual, displacement or reactions)".into(),
+            what: format!(
+                "the {what} ({value}) to be written to summary.json; nothing was written"
+            ),
         }
         .into());
     }
@@ -235,15 +244,36 @@ pub fn write_quasi_static(
         what: format!("summary ({e})"),
     })?;
     // serde_json would write a non-finite number as null: refuse instead.
-    let finite = s.records.iter().all(|r| {
-        [r.load_factor, r.displacement, r.residual]
-            .iter()
-            .chain(r.reactions.iter().flatten())
-            .all(|v| v.is_finite())
-    }) && s.solves.iter().all(|x| x.report.residual.is_finite());
-    if !finite {
+    let bad = s
+        .records
+        .iter()
+        .find_map(|r| {
+            [
+                ("load factor", r.load_factor),
+                ("displacement", r.displacement),
+                ("residual", r.residual),
+            ]
+            .into_iter()
+            .chain(r.reactions.iter().flatten().map(|v| ("reaction", *v)))
+            .find(|(_, v)| !v.is_finite())
+            .map(|(c, v)| (format!("{c} of step {}", r.step), v))
+        })
+        .or_else(|| {
+            s.solves
+                .iter()
+                .find(|x| !x.report.residual.is_finite())
+                .map(|x| {
+                    (
+                        format!("residual of the solve at step {}", x.step),
+                        x.report.residual,
+                    )
+                })
+        });
+    if let Some((what, value)) = bad {
         return Err(NumericalError::NonFinite {
-            what: "the summary (records or solves)".into(),
+            what: format!(
+                "the {what} ({value}) to be written to summary.json; nothing was written"
+            ),
         }
         .into());
     }

@@ -7,7 +7,7 @@
 
 use super::spec::*;
 use super::validate::{aabb, components, positive, Aabb};
-use crate::error::InputError;
+use crate::error::{num, InputError};
 
 /// A validated function of time `g(t)`.
 #[derive(Debug, Clone, PartialEq)]
@@ -94,12 +94,14 @@ pub struct Gaussian {
 }
 
 impl Gaussian {
-    /// The pulse's displacement at `x`.
+    /// The pulse's displacement at `x`. The distance is divided by the width
+    /// before it is squared: a width of 1e-200 m (whose square underflows to 0)
+    /// gives the amplitude at the centre and 0 elsewhere, not 0/0.
     pub fn at(&self, x: &[f64; 3]) -> [f64; 3] {
         let r2: f64 = (0..self.axes)
-            .map(|a| (x[a] - self.center[a]).powi(2))
+            .map(|a| ((x[a] - self.center[a]) / self.width).powi(2))
             .sum();
-        let g = (-r2 / (self.width * self.width)).exp();
+        let g = (-r2).exp();
         self.amplitude.map(|a| a * g)
     }
 }
@@ -223,13 +225,16 @@ fn time_function(field: &str, t: &Option<TimeFunctionSpec>) -> Result<TimeFuncti
                 if !tk.is_finite() || tk < 0.0 || (k > 0 && tk <= times[k - 1]) {
                     return Err(InputError::new(
                         format!("{field}.times[{k}]"),
-                        format!("{tk}: times must be finite, ≥ 0 and strictly increasing"),
+                        format!(
+                            "{}: times must be finite, ≥ 0 and strictly increasing",
+                            num(tk)
+                        ),
                     ));
                 }
                 if !gk.is_finite() {
                     return Err(InputError::new(
                         format!("{field}.values[{k}]"),
-                        format!("{gk} is not a finite number"),
+                        format!("{} is not a finite number", num(gk)),
                     ));
                 }
             }
@@ -255,7 +260,7 @@ fn gaussian(field: &str, g: &GaussianSpec, d: usize) -> Result<Gaussian, InputEr
         if !c.is_finite() {
             return Err(InputError::new(
                 format!("{field}.center[{a}]"),
-                format!("{c} is not a finite number"),
+                format!("{} is not a finite number", num(c)),
             ));
         }
         center[a] = c;
@@ -272,7 +277,7 @@ fn gaussian(field: &str, g: &GaussianSpec, d: usize) -> Result<Gaussian, InputEr
         if !v.is_finite() {
             return Err(InputError::new(
                 format!("{field}.amplitude[{a}]"),
-                format!("{v} is not a finite number"),
+                format!("{} is not a finite number", num(v)),
             ));
         }
         amplitude[a] = v;
@@ -424,7 +429,7 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
     if !(safety_factor > 0.0 && safety_factor <= 1.0) {
         return Err(InputError::new(
             "dynamics.safety_factor",
-            format!("{safety_factor} is outside (0, 1]"),
+            format!("{} is outside (0, 1]", num(safety_factor)),
         ));
     }
     if dy.safety_factor.is_some() && dy.time_step.is_some() {
@@ -437,14 +442,14 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
     if !(damping.is_finite() && damping >= 0.0) {
         return Err(InputError::new(
             "dynamics.damping",
-            format!("{damping} is not a finite number ≥ 0 (1/s)"),
+            format!("{} is not a finite number ≥ 0 (1/s)", num(damping)),
         ));
     }
     let tolerance = dy.tolerance.unwrap_or(1e-8);
     if !(tolerance > 0.0 && tolerance < 1.0) {
         return Err(InputError::new(
             "dynamics.tolerance",
-            format!("{tolerance} is outside (0, 1)"),
+            format!("{} is outside (0, 1)", num(tolerance)),
         ));
     }
     let balance_tolerance = dy.balance_tolerance.unwrap_or(DEFAULT_BALANCE_TOLERANCE);
@@ -452,8 +457,9 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
         return Err(InputError::new(
             "dynamics.balance_tolerance",
             format!(
-                "{balance_tolerance} is not a positive number (a fraction of the largest \
-                 energy; default {DEFAULT_BALANCE_TOLERANCE}, inf turns the check off)"
+                "{} is not a positive number (a fraction of the largest \
+                 energy; default {DEFAULT_BALANCE_TOLERANCE}, inf turns the check off)",
+                num(balance_tolerance)
             ),
         ));
     }

@@ -16,9 +16,10 @@ pub use dynamics::{
 };
 pub use spec::*;
 pub use validate::{
-    Aabb, Crack, FractureParameter, FractureSettings, Hole, HorizonRule, Load, LoadTarget,
-    Material, MeshFile, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic, Region,
-    Scene, Selection, MAX_HORIZON_FACTOR,
+    bond_stiffness_in_range, length_in_range, Aabb, Crack, FractureParameter, FractureSettings,
+    Hole, HorizonRule, Load, LoadTarget, Material, MeshFile, OutputSettings, PointFile, Prescribed,
+    Probe, Profile, QuasiStatic, Region, Scene, Selection, MAX_HORIZON_FACTOR, MAX_LENGTH,
+    MIN_LENGTH,
 };
 
 use crate::error::{Error, InputError};

@@ -1,7 +1,7 @@
 //! Validation of a [`SceneSpec`] into a typed [`Scene`].
 
 use super::spec::*;
-use crate::error::InputError;
+use crate::error::{approx, echo_list, num, InputError};
 use crate::model::bond_based;
 use std::path::{Path, PathBuf};
 
@@ -339,7 +339,7 @@ impl Scene {
                     let known: Vec<_> = materials.iter().map(|m| m.name.as_str()).collect();
                     InputError::new(
                         field,
-                        format!("unknown material \"{name}\"; defined: {}", known.join(", ")),
+                        format!("unknown material \"{name}\"; defined: {}", echo_list(known)),
                     )
                 })
         };
@@ -350,7 +350,11 @@ impl Scene {
             let f = format!("regions[{k}]");
             let material = material_index(&format!("{f}.material"), &r.material)?;
             positive(&format!("{f}.spacing"), r.spacing)?;
+            length_in_range(&format!("{f}.spacing"), "spacing", r.spacing)?;
             let bounds = aabb(&format!("{f}.box"), &r.bounds, d)?;
+            for x in bounds.min[..d].iter().chain(&bounds.max[..d]) {
+                length_in_range(&format!("{f}.box"), "coordinate", *x)?;
+            }
             let mut count = 1.0f64;
             for a in 0..d {
                 let cells = (bounds.max[a] - bounds.min[a]) / r.spacing;
@@ -358,15 +362,15 @@ impl Scene {
                     return Err(InputError::new(
                         format!("{f}.box"),
                         format!("extent {} along axis {a} is smaller than one spacing ({}): the region would hold no point",
-                            bounds.max[a] - bounds.min[a], r.spacing),
+                            num(bounds.max[a] - bounds.min[a]), num(r.spacing)),
                     ));
                 }
                 count *= cells.round();
                 if (cells - cells.round()).abs() > 1e-6 * cells.max(1.0) {
                     return Err(InputError::new(
                         format!("{f}.box"),
-                        format!("extent {} along axis {a} is not a whole number of spacings ({cells:.4} × {}); \
-                                 adjust the box or the spacing", bounds.max[a] - bounds.min[a], r.spacing),
+                        format!("extent {} along axis {a} is not a whole number of spacings ({} × {}); \
+                                 adjust the box or the spacing", num(bounds.max[a] - bounds.min[a]), approx(cells), num(r.spacing)),
                     ));
                 }
             }
@@ -387,13 +391,13 @@ impl Scene {
                     positive(&format!("{f}.horizon"), h)?;
                     if h <= r.spacing {
                         return Err(InputError::new(format!("{f}.horizon"), format!(
-                            "horizon {h} is not larger than the spacing {}: no point would have a neighbour; \
-                             use a horizon of about 3 spacings", r.spacing)));
+                            "horizon {} is not larger than the spacing {}: no point would have a neighbour; \
+                             use a horizon of about 3 spacings", num(h), num(r.spacing))));
                     }
                     if h > MAX_HORIZON_FACTOR * r.spacing {
                         return Err(InputError::new(format!("{f}.horizon"), format!(
-                            "horizon {h} is {:.4} spacings ({}): implausibly large (above {MAX_HORIZON_FACTOR}); \
-                             typical horizons are 2 to 5 spacings", h / r.spacing, r.spacing)));
+                            "horizon {} is {} spacings ({}): implausibly large (above {MAX_HORIZON_FACTOR}); \
+                             typical horizons are 2 to 5 spacings", num(h), approx(h / r.spacing), num(r.spacing))));
                     }
                     HorizonRule::Radius(h)
                 }
@@ -415,27 +419,20 @@ impl Scene {
                     format!(
                         "spacing {} gives a point volume {volume:e} and a horizon {radius:e}: \
                          outside the floating-point range; rescale the units",
-                        r.spacing
+                        num(r.spacing)
                     ),
                 ));
             }
-            // The bond stiffness C(δ) V² / Δx must be a normal floating-point number.
-            let stiffness =
-                bond_based::micromodulus(dimension, &materials[material], radius, thickness)
-                    * volume
-                    * volume
-                    / r.spacing;
-            if !(stiffness.is_normal() && stiffness > 0.0) {
-                return Err(InputError::new(
-                    format!("materials.{}.youngs_modulus", materials[material].name),
-                    format!(
-                        "with the spacing {} and horizon {radius} of regions[{k}], a bond's \
-                         stiffness C V²/Δx would be {stiffness:e}: outside the floating-point range; \
-                         rescale the units (e.g. MPa and mm)",
-                        r.spacing
-                    ),
-                ));
-            }
+            bond_stiffness_in_range(
+                &f,
+                &format!("{f}.spacing"),
+                dimension,
+                &materials[material],
+                r.spacing,
+                radius,
+                volume,
+                thickness,
+            )?;
             regions.push(Region {
                 material,
                 spacing: r.spacing,
@@ -462,9 +459,11 @@ impl Scene {
                     return Err(InputError::new(
                         format!("regions[{k}].{field}"),
                         format!(
-                            "gives a horizon of {radius} m, not smaller than the body ({extent} m \
+                            "gives a horizon of {} m, not smaller than the body ({} m \
                              across its regions): every point would bond to every other; use a \
-                             finer spacing or a smaller horizon"
+                             finer spacing or a smaller horizon",
+                            num(radius),
+                            num(extent)
                         ),
                     ));
                 }
@@ -830,7 +829,9 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
                     return Err(InputError::new(
                         format!("{f}.poisson_ratio"),
                         format!(
-                        "{nu} is outside {range}, the range of a stable isotropic material here"),
+                            "{} is outside {range}, the range of a stable isotropic material here",
+                            num(nu)
+                        ),
                     ));
                 }
             } else if spec.model.kind == ModelKind::Shear {
@@ -1021,10 +1022,11 @@ fn fracture_runs(
         return Err(InputError::new(
             "quasi_static.min_step_fraction",
             format!(
-                "{min_step_fraction} is outside [{lowest:e}, 1]: the smallest step \
+                "{} is outside [{lowest:e}, 1]: the smallest step \
                  (min_step_fraction × max_load_factor / steps) must be at least \
                  {MIN_STEP_RELATIVE:e} of max_load_factor, or it no longer changes the load \
-                 factor in double precision and the run never ends"
+                 factor in double precision and the run never ends",
+                num(min_step_fraction)
             ),
         ));
     }
@@ -1032,7 +1034,7 @@ fn fracture_runs(
         if !(f > 0.0 && f < 1.0) {
             return Err(InputError::new(
                 "quasi_static.stop_after_peak",
-                format!("{f} is outside (0, 1): give the fraction of the peak reaction below which the run ends"),
+                format!("{} is outside (0, 1): give the fraction of the peak reaction below which the run ends", num(f)),
             ));
         }
     }
@@ -1040,7 +1042,7 @@ fn fracture_runs(
     if !(0.0..1.0).contains(&tolerance) {
         return Err(InputError::new(
             "quasi_static.tolerance",
-            format!("{tolerance} is outside [0, 1)"),
+            format!("{} is outside [0, 1)", num(tolerance)),
         ));
     }
     Ok((
@@ -1062,6 +1064,82 @@ fn fracture_runs(
 /// Largest horizon, in spacings, a scene may give (factor or radius).
 pub const MAX_HORIZON_FACTOR: f64 = 20.0;
 
+/// Smallest spacing of a body (m): bond lengths are computed from squared
+/// coordinate differences, which stay normal doubles (above 2.2e-308) down to
+/// about 1.5e-154 m; the margin covers the sums of three squares.
+pub const MIN_LENGTH: f64 = 1e-150;
+
+/// Largest spacing and coordinate magnitude of a body (m): squared lengths
+/// stay finite (below 1.8e308) up to about 1.3e154 m.
+pub const MAX_LENGTH: f64 = 1e150;
+
+/// Refuses a point whose bond stiffness `C(δ) V² / Δx` is not a normal
+/// floating-point number, naming `materials.NAME.youngs_modulus` when the
+/// modulus is to blame (the same bond with E = 1 Pa is in range) and
+/// `spacing_field` otherwise; `source` names the region, point-file line or
+/// mesh element.
+#[allow(clippy::too_many_arguments)]
+pub fn bond_stiffness_in_range(
+    source: &str,
+    spacing_field: &str,
+    dimension: Dimension,
+    material: &Material,
+    spacing: f64,
+    horizon: f64,
+    volume: f64,
+    thickness: f64,
+) -> Result<(), InputError> {
+    let stiffness = |m: &Material| {
+        bond_based::micromodulus(dimension, m, horizon, thickness) * volume * volume / spacing
+    };
+    let k = stiffness(material);
+    if k.is_normal() {
+        return Ok(());
+    }
+    let unit = Material {
+        youngs_modulus: 1.0,
+        ..material.clone()
+    };
+    let field = if stiffness(&unit).is_normal() {
+        format!("materials.{}.youngs_modulus", material.name)
+    } else {
+        spacing_field.to_string()
+    };
+    Err(InputError::new(
+        field,
+        format!(
+            "with E = {} Pa, the spacing {} m and the horizon {} m of {source}, a bond's \
+             stiffness C V²/Δx would be {k:.3e}: outside the floating-point range; rescale \
+             the units (e.g. MPa and mm)",
+            num(material.youngs_modulus),
+            num(spacing),
+            num(horizon)
+        ),
+    ))
+}
+
+/// Refuses a spacing outside [[`MIN_LENGTH`], [`MAX_LENGTH`]] or a coordinate
+/// beyond ±[`MAX_LENGTH`]: `what` is "spacing" or "coordinate".
+pub fn length_in_range(field: &str, what: &str, v: f64) -> Result<(), InputError> {
+    let spacing = what == "spacing";
+    if (spacing && v.abs() < MIN_LENGTH) || v.abs() > MAX_LENGTH {
+        return Err(InputError::new(
+            field,
+            format!(
+                "{what} {v:?} m is outside [{}, {MAX_LENGTH:e}] m, the range in which squared \
+                 lengths (bond lengths, neighbour distances) are normal double-precision \
+                 numbers; rescale the units (e.g. µm or km instead of m)",
+                if spacing {
+                    format!("{MIN_LENGTH:e}")
+                } else {
+                    format!("{:e}", -MAX_LENGTH)
+                }
+            ),
+        ));
+    }
+    Ok(())
+}
+
 /// Bytes per GiB.
 const GIB: f64 = 1073741824.0;
 
@@ -1071,7 +1149,7 @@ pub(super) fn positive(field: &str, v: f64) -> Result<(), InputError> {
     } else {
         Err(InputError::new(
             field,
-            format!("{v} is not a finite positive number"),
+            format!("{} is not a finite positive number", num(v)),
         ))
     }
 }
@@ -1079,12 +1157,12 @@ pub(super) fn positive(field: &str, v: f64) -> Result<(), InputError> {
 fn check_horizon_factor(field: &str, m: f64) -> Result<(), InputError> {
     if !m.is_finite() || m <= 1.0 {
         return Err(InputError::new(field, format!(
-            "{m} would make the horizon no larger than the spacing (no neighbours); use a value above 1, typically 3.015")));
+            "{} would make the horizon no larger than the spacing (no neighbours); use a value above 1, typically 3.015", num(m))));
     }
     if m > MAX_HORIZON_FACTOR {
         return Err(InputError::new(
             field,
-            format!("{m} is implausibly large (above {MAX_HORIZON_FACTOR} spacings); typical values are 2 to 5"),
+            format!("{} is implausibly large (above {MAX_HORIZON_FACTOR} spacings); typical values are 2 to 5", num(m)),
         ));
     }
     Ok(())
@@ -1134,7 +1212,7 @@ fn coords(field: &str, v: &[f64], d: usize) -> Result<[f64; 3], InputError> {
     if let Some(bad) = v.iter().find(|x| !x.is_finite()) {
         return Err(InputError::new(
             field,
-            format!("{bad} is not a finite number"),
+            format!("{} is not a finite number", num(*bad)),
         ));
     }
     let mut x = [0.0; 3];
@@ -1153,7 +1231,11 @@ pub(super) fn aabb(field: &str, b: &BoxSpec, d: usize) -> Result<Aabb, InputErro
         if max[a] < min[a] {
             return Err(InputError::new(
                 field,
-                format!("max[{a}] = {} is below min[{a}] = {}", max[a], min[a]),
+                format!(
+                    "max[{a}] = {} is below min[{a}] = {}",
+                    num(max[a]),
+                    num(min[a])
+                ),
             ));
         }
         bounds.min[a] = min[a];
@@ -1187,7 +1269,7 @@ pub(super) fn components(
             Some(v) if !v.is_finite() => {
                 return Err(InputError::new(
                     format!("{field}.{axis}"),
-                    format!("{v} is not finite"),
+                    format!("{} is not finite", num(v)),
                 ))
             }
             _ => {}

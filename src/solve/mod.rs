@@ -1,5 +1,8 @@
 //! Sparse direct solvers (faer): Cholesky with the symbolic analysis kept for
-//! reuse, LU as an explicit fallback, and the residual check.
+//! reuse, LU as an explicit fallback, and the residual check: iterative
+//! refinement with the factor ([`refine`]) and, where the residual of a
+//! double-precision product is all round-off, with a more accurate residual
+//! ([`refine_extended`]).
 //!
 //! Pivot failures are reported as the free unknown they concern: faer reports
 //! the pivot index in the permuted ordering, 1-based on the simplicial path and
@@ -516,6 +519,91 @@ pub fn refine(
     (residual, steps)
 }
 
+/// Largest number of iterative-refinement steps with an accurate residual
+/// ([`refine_extended`]); each gains about `-log10(κ ε)` digits.
+pub const MAX_EXTENDED_STEPS: usize = 10;
+
+/// Largest last correction, relative to the solution (`‖dx‖∞ / ‖x‖∞`), with
+/// which [`refine_extended`] counts as converged: the answer is then known to
+/// about that accuracy (the corrections contract, so the error left is at
+/// most about the last one). The 10⁶-point 1D bar stops at 4.6e-12.
+pub const REFINED_ACCURACY: f64 = 1e-10;
+
+/// How [`refine_extended`] ended.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExtendedRefinement {
+    /// Steps taken.
+    pub steps: usize,
+    /// The last correction applied, relative to the solution (`‖dx‖∞ / ‖x‖∞`).
+    pub accuracy: f64,
+    /// `accuracy` ≤ [`REFINED_ACCURACY`].
+    pub converged: bool,
+    /// `‖b − K x‖ / ‖b‖` of the final `x`, with the accurate residual.
+    pub residual: f64,
+}
+
+/// Iterative refinement with the residual `b − K x` computed more accurately
+/// than a double-precision product (`residual`: the model's bond forces, or
+/// `K x` in extended precision) and corrected with the factor
+/// (`approximate_solve`). When `κ(K) ε < 1` the corrections contract to the
+/// round-off of the answer itself (Higham, Accuracy and Stability of
+/// Numerical Algorithms, ch. 12), even where the relative residual of any
+/// double-precision `x` stays far above round-off: a 1D chain of 10⁶ points
+/// has `κ ≈ 4e11` and `ε ‖|K||x|‖ / ‖b‖ ≈ 2e-7`, so `‖Kx − b‖/‖b‖ ≤ 1e-8`
+/// cannot be had, but the answer can. A correction is applied while it at
+/// most halves the previous one; the loop ends when one does not (the
+/// round-off floor, or a factor that lost every digit: `κ ε ≳ 1`), when a
+/// correction is below 4 ulps of `‖x‖∞`, or after [`MAX_EXTENDED_STEPS`].
+pub fn refine_extended(
+    residual: &dyn Fn(&[f64]) -> Vec<f64>,
+    approximate_solve: &dyn Fn(&mut [f64]),
+    b: &[f64],
+    x: &mut [f64],
+) -> ExtendedRefinement {
+    let max_abs = |v: &[f64]| v.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+    let b_norm = norm2(b.iter().copied());
+    let relative = |r: &[f64]| {
+        let r = norm2(r.iter().copied());
+        if b_norm > 0.0 {
+            r / b_norm
+        } else {
+            r
+        }
+    };
+    let mut previous = f64::INFINITY;
+    let mut steps = 0;
+    let mut r = residual(x);
+    while steps < MAX_EXTENDED_STEPS {
+        let mut dx = r.clone();
+        approximate_solve(&mut dx);
+        let size = max_abs(&dx);
+        if !size.is_finite() || size > 0.5 * previous {
+            break;
+        }
+        x.iter_mut().zip(&dx).for_each(|(a, d)| *a += d);
+        steps += 1;
+        previous = size;
+        r = residual(x);
+        if size <= 4.0 * f64::EPSILON * max_abs(x) {
+            break;
+        }
+    }
+    let scale = max_abs(x);
+    let accuracy = if steps == 0 {
+        f64::INFINITY
+    } else if scale > 0.0 {
+        previous / scale
+    } else {
+        0.0
+    };
+    ExtendedRefinement {
+        steps,
+        accuracy,
+        converged: accuracy <= REFINED_ACCURACY,
+        residual: relative(&r),
+    }
+}
+
 /// Euclidean norm without overflow or underflow of the squares: scaled by the
 /// largest magnitude first (a vector of 1e160s has a norm, not ∞; non-finite
 /// entries give a non-finite norm).
@@ -791,5 +879,34 @@ mod tests {
         };
         let (after, steps) = refine(&apply, &negated, &b, &mut x);
         assert_eq!((steps, after), (0, 1.0));
+    }
+
+    /// Refinement with an accurate residual: a factor accurate to five digits
+    /// converges to the answer (last correction below `REFINED_ACCURACY`); a
+    /// factor of the wrong sign is reported as not converged.
+    #[test]
+    fn extended_refinement_converges_or_says_it_did_not() {
+        let (apply, chol) = perturbed_pair(20, 1e-5);
+        let b: Vec<f64> = (0..400).map(|k| (k as f64).cos()).collect();
+        let residual = |x: &[f64]| -> Vec<f64> {
+            let kx = apply(x);
+            b.iter().zip(&kx).map(|(bi, k)| bi - k).collect()
+        };
+        let mut x = vec![0.0; 400];
+        let r = refine_extended(
+            &residual,
+            &|v: &mut [f64]| chol.solve_in_place(v),
+            &b,
+            &mut x,
+        );
+        assert!(r.converged && r.accuracy <= REFINED_ACCURACY, "{r:?}");
+        assert!(r.residual < 1e-13, "{r:?}");
+        let negated = |v: &mut [f64]| {
+            chol.solve_in_place(v);
+            v.iter_mut().for_each(|a| *a = -*a);
+        };
+        let mut x = vec![0.0; 400];
+        let r = refine_extended(&residual, &negated, &b, &mut x);
+        assert!(!r.converged && r.steps == 1, "{r:?}");
     }
 }

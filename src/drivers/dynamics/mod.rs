@@ -30,6 +30,15 @@
 //! `dynamics.balance_tolerance` (default 0.2) fails at the record that finds it,
 //! from step 10 on ([`BALANCE_FROM_STEP`]).
 //!
+//! **Divergence** is checked every step, for the cost of one sum: the second
+//! half kick adds up `m |v|²` as it updates the velocities (relaxation: its
+//! residual reduces every force), and a non-finite sum stops the run at that
+//! step, naming the point and the cause (the forced time step when it is above
+//! the stable one, else the magnitudes of the input). The initial state
+//! (initial conditions, prescribed values at t = 0) is checked before the
+//! first step: a kinetic energy, displacement or internal force beyond double
+//! precision is an input error naming its `initial_conditions` entry.
+//!
 //! Prescribed components follow `value · g(t)`
 //! (displacement) or `value · ∫g` (velocity). **Stable step**: bond-based,
 //! `Δt_i = sqrt(2 m_i / Σ w_b/|ξ_b|)` over every bond touching `i`, owned or
@@ -362,6 +371,20 @@ fn first_non_finite(u: &[[f64; 3]], v: &[[f64; 3]]) -> Option<usize> {
         .position_first(|(a, b)| a.iter().chain(b).any(|x| !x.is_finite()))
 }
 
+/// The point to name when a state diverged: the first with a non-finite
+/// displacement or velocity, else the one with the largest `m |v|²` (a kinetic
+/// energy that overflowed while every velocity is finite).
+fn diverged_point(u: &[[f64; 3]], v: &[[f64; 3]], mass: &[f64]) -> usize {
+    first_non_finite(u, v).unwrap_or_else(|| {
+        (0..v.len())
+            .max_by(|&a, &b| {
+                let e = |i: usize| mass[i] * crate::geometry::magnitude(&v[i]).powi(2);
+                e(a).total_cmp(&e(b))
+            })
+            .unwrap_or(0)
+    })
+}
+
 /// Runs the scene's explicit dynamics or dynamic relaxation; `probes` are the
 /// points whose histories are recorded.
 pub fn run(
@@ -427,6 +450,16 @@ pub fn run(
                 .enumerate()
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap_or((0, f64::INFINITY));
+            if !(stable_dt.is_finite() && stable_dt > 0.0) {
+                // Bond stiffnesses that under- or overflowed at this scale.
+                return Err(crate::discretization::beyond_double_precision(
+                    &disc,
+                    critical_point,
+                    "the stable time step",
+                    stable_dt,
+                )
+                .into());
+            }
             let dt = match dy.time_step {
                 Some(t) if t > stable_dt && !dy.force_time_step => {
                     return Err(InputError::new(
@@ -485,6 +518,7 @@ pub fn run(
                 loads: loads_field,
                 probes,
                 dt,
+                stable_dt,
                 steps,
                 sets: set_names.len(),
             };
@@ -571,11 +605,160 @@ struct Verlet<'a> {
     loads: Loads,
     probes: &'a [usize],
     dt: f64,
+    /// The stable time step (`dt` above it only with `force_time_step`).
+    stable_dt: f64,
     steps: usize,
     sets: usize,
 }
 
 impl Verlet<'_> {
+    /// Whether the scene forced a time step above the stable one.
+    fn forced(&self) -> bool {
+        self.dt > self.stable_dt
+    }
+
+    /// What the forced step does, for the failures it causes.
+    fn forced_cause(&self) -> String {
+        format!(
+            "the time step {:.4e} s is above the stable {:.4e} s (dynamics.force_time_step = \
+             true), which makes the scheme unstable: give at most the stable step",
+            self.dt, self.stable_dt
+        )
+    }
+
+    /// The error of a state that left double precision at `step`.
+    fn diverged(&self, step: usize, time: f64, u: &[[f64; 3]], v: &[[f64; 3]]) -> Error {
+        let point = diverged_point(u, v, &self.mass);
+        let cause = if self.forced() {
+            self.forced_cause()
+        } else {
+            format!(
+                "the time step {:.4e} s is within the stable {:.4e} s, so the state itself left \
+                 double precision: a load, prescribed motion or initial condition too large for \
+                 this body, or points driven through each other (a bond of zero length has no \
+                 direction)",
+                self.dt, self.stable_dt
+            )
+        };
+        NumericalError::Diverged {
+            step,
+            time,
+            point,
+            position: self.kernel.disc().points.x[point],
+            cause,
+        }
+        .into()
+    }
+
+    /// Refuses an initial state (initial conditions, prescribed values at
+    /// t = 0) whose displacement, velocity, kinetic energy or internal forces
+    /// are beyond double precision, naming the entry that set the point: the
+    /// run could not take a step (a velocity of 1e300 m/s was reported as a
+    /// time step too large).
+    fn check_initial_state(
+        &self,
+        u: &[[f64; 3]],
+        v: &[[f64; 3]],
+        f_int: &[[f64; 3]],
+    ) -> Result<(), Error> {
+        let dy = self.scene.dynamics.as_ref().expect("a dynamics scene");
+        let kinetic = |i: usize| 0.5 * self.mass[i] * crate::geometry::dot(&v[i], &v[i]);
+        let moving = (0..v.len()).find(|&i| !kinetic(i).is_finite());
+        let total: f64 = (0..v.len()).map(kinetic).sum();
+        let moving =
+            moving.or_else(|| (!total.is_finite()).then(|| diverged_point(u, v, &self.mass)));
+        // A non-finite displacement, else the largest displacement when a
+        // force overflowed (the point whose displacement caused it).
+        let strained = (0..u.len())
+            .find(|&i| u[i].iter().any(|x| !x.is_finite()))
+            .or_else(|| {
+                f_int.iter().flatten().any(|x| !x.is_finite()).then(|| {
+                    (0..u.len())
+                        .max_by(|&a, &b| {
+                            crate::geometry::magnitude(&u[a])
+                                .total_cmp(&crate::geometry::magnitude(&u[b]))
+                        })
+                        .unwrap_or(0)
+                })
+            });
+        let (point, velocity) = match (moving, strained) {
+            (Some(i), _) => (i, true),
+            (None, Some(i)) => (i, false),
+            (None, None) => return Ok(()),
+        };
+        if !velocity && crate::geometry::magnitude(&u[point]) == 0.0 {
+            // Forces that are not finite without any displacement: the
+            // model's quantities at this scale leave double precision.
+            let i = f_int
+                .iter()
+                .position(|f| f.iter().any(|x| !x.is_finite()))
+                .unwrap_or(point);
+            return Err(crate::discretization::beyond_double_precision(
+                self.kernel.disc(),
+                i,
+                "the internal force at rest",
+                f_int[i]
+                    .iter()
+                    .copied()
+                    .find(|x| !x.is_finite())
+                    .unwrap_or(0.0),
+            )
+            .into());
+        }
+        let x = self.kernel.disc().points.x[point];
+        let what = if velocity {
+            format!(
+                "a velocity of {} m/s: its kinetic energy ½ m v² (the run's total: {total:.3e} J) \
+                 is beyond double precision",
+                crate::error::num(crate::geometry::magnitude(&v[point]))
+            )
+        } else {
+            format!(
+                "a displacement of {} m: it or the internal forces it causes are beyond double \
+                 precision",
+                crate::error::num(crate::geometry::magnitude(&u[point]))
+            )
+        };
+        // The entry that set the point: an initial condition, else a support.
+        let key = if velocity { "velocity" } else { "displacement" };
+        let field = dy
+            .initial
+            .iter()
+            .enumerate()
+            .find_map(|(k, ic)| {
+                if ic.bounds.as_ref().is_some_and(|b| !b.contains(&x)) {
+                    return None;
+                }
+                let sets = |c: &[Option<f64>; 3]| c.iter().any(|v| v.is_some_and(|v| v != 0.0));
+                match (velocity, &ic.gaussian) {
+                    (true, _) if sets(&ic.velocity) => {
+                        Some(format!("initial_conditions[{k}].velocity"))
+                    }
+                    (false, _) if sets(&ic.displacement) => {
+                        Some(format!("initial_conditions[{k}].displacement"))
+                    }
+                    (false, Some(g)) if g.at(&x).iter().any(|&a| a != 0.0) => {
+                        Some(format!("initial_conditions[{k}].gaussian"))
+                    }
+                    _ => None,
+                }
+            })
+            .or_else(|| {
+                self.constrained
+                    .iter()
+                    .find(|c| c.point as usize == point)
+                    .map(|c| format!("boundary[{}].{key}", c.set))
+            })
+            .unwrap_or_else(|| "initial_conditions".to_string());
+        Err(InputError::new(
+            field,
+            format!(
+                "gives point {point} (x = {x:?}) {what}, so the run cannot take a step; give a \
+                 smaller value (or rescale the units)"
+            ),
+        )
+        .into())
+    }
     /// Prescribed displacement and velocity of a constrained component at `t`.
     fn prescribed(&self, c: &Constrained, t: f64) -> (f64, f64) {
         let dy = self.scene.dynamics.as_ref().expect("a dynamics scene");
@@ -599,7 +782,32 @@ impl Verlet<'_> {
         let mut u = vec![[0.0; 3]; n];
         let mut v = vec![[0.0; 3]; n];
         {
-            let x = &self.kernel.disc().points.x;
+            let points = &self.kernel.disc().points;
+            let x = &points.x;
+            for (k, g) in dy
+                .initial
+                .iter()
+                .enumerate()
+                .filter_map(|(k, ic)| Some((k, ic.gaussian.as_ref()?)))
+            {
+                // Legitimate, but a pulse narrower than the spacing is not
+                // resolved: it moves the point(s) nearest its centre only.
+                let spacing = points.spacing.iter().copied().fold(f64::INFINITY, f64::min);
+                if g.width < spacing {
+                    let peak = g.amplitude.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+                    let moved = x
+                        .iter()
+                        .filter(|xi| g.at(xi).iter().any(|a| a.abs() >= 1e-3 * peak))
+                        .count();
+                    eprintln!(
+                        "warning: initial_conditions[{k}].gaussian.width = {} m is below the \
+                         spacing ({} m): the pulse is not resolved and displaces {moved} \
+                         point(s) by more than 1e-3 of its amplitude",
+                        crate::error::num(g.width),
+                        crate::error::num(spacing)
+                    );
+                }
+            }
             for ic in &dy.initial {
                 for i in 0..n {
                     if ic.bounds.as_ref().is_some_and(|b| !b.contains(&x[i])) {
@@ -626,6 +834,7 @@ impl Verlet<'_> {
         let mut a = vec![[0.0; 3]; n];
         let mut du = vec![[0.0; 3]; n];
         let broken = self.kernel.forces(&u, &mut f_int);
+        self.check_initial_state(&u, &v, &f_int)?;
         let total = |f_int: &[[f64; 3]], force: &mut [[f64; 3]], t: f64, loads: &Loads| {
             force.copy_from_slice(f_int);
             loads.add_into(t, force);
@@ -718,8 +927,10 @@ impl Verlet<'_> {
                     .sum();
                 w_int -= 0.5 * (power_int_old + power_int_new);
                 // Second half kick.
+                // The same pass sums `m |v|²` of the new velocities: a
+                // non-finite sum is a divergence, found at the step it happens.
                 let factor = 1.0 / (1.0 + 0.5 * alpha * dt);
-                let damping_step: f64 = a
+                let (damping_step, twice_kinetic) = a
                     .par_iter_mut()
                     .zip(v.par_iter_mut())
                     .enumerate()
@@ -734,9 +945,15 @@ impl Verlet<'_> {
                                 p += alpha * mass[i] * half * mid;
                             }
                         }
-                        p * dt
+                        (
+                            p * dt,
+                            mass[i] * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]),
+                        )
                     })
-                    .sum();
+                    .reduce(|| (0.0, 0.0), |x, y| (x.0 + y.0, x.1 + y.1));
+                if !(twice_kinetic.is_finite() && damping_step.is_finite()) {
+                    return Err(self.diverged(step, t1, &u, &v));
+                }
                 damping_work += damping_step;
                 // Supports: trapezoidal work of the reactions R = m a − F.
                 for (k, c) in self.constrained.iter().enumerate() {
@@ -752,15 +969,6 @@ impl Verlet<'_> {
             let last = step == self.steps;
             if step % record_every == 0 || last {
                 let clock = Instant::now();
-                if let Some(i) = first_non_finite(&u, &v) {
-                    return Err(NumericalError::Diverged {
-                        step,
-                        time: t,
-                        point: i,
-                        position: self.kernel.disc().points.x[i],
-                    }
-                    .into());
-                }
                 let e_kin = kinetic(&v);
                 let e_strain = if uses_work {
                     w_int
@@ -774,6 +982,11 @@ impl Verlet<'_> {
                     .max((e_kin + e_strain).abs())
                     .max(w_ext.abs());
                 let balance = e_kin + e_strain + broken_part + damping_work - w_ext - e0;
+                if !(balance.is_finite() && scale.is_finite()) {
+                    // Every velocity is finite (checked each step), but an
+                    // energy or a work left double precision.
+                    return Err(self.diverged(step, t, &u, &v));
+                }
                 let relative = if scale > 0.0 { balance / scale } else { 0.0 };
                 max_balance = max_balance.max(relative.abs());
                 if step >= BALANCE_FROM_STEP && relative.abs() > dy.balance_tolerance {
@@ -782,6 +995,13 @@ impl Verlet<'_> {
                         time: t,
                         error: relative,
                         tolerance: dy.balance_tolerance,
+                        cause: if self.forced() {
+                            self.forced_cause()
+                        } else {
+                            "the forces are not the gradient of an energy (the shear model \
+                             with heavy breakage, the traditional horizons)"
+                                .to_string()
+                        },
                     }
                     .into());
                 }
@@ -864,23 +1084,23 @@ impl Relaxation<'_> {
     /// Out-of-balance force on the free components, relative to the larger of
     /// the applied force and the reaction.
     fn residual(&self, force: &[[f64; 3]], applied: f64) -> f64 {
-        let (mut r2, mut reaction2) = (0.0, 0.0);
-        for (i, f) in force.iter().enumerate() {
-            for c in 0..3 {
-                if self.free[i][c] {
-                    r2 += f[c] * f[c];
-                }
-            }
-        }
-        for c in &self.constrained {
-            let f = force[c.point as usize][c.component as usize];
-            reaction2 += f * f;
-        }
-        let scale = applied.max(reaction2.sqrt());
+        // Scaled norms: forces of 1e160 N keep a finite residual.
+        let r = crate::solve::norm2(
+            force
+                .iter()
+                .enumerate()
+                .flat_map(|(i, f)| (0..3).filter(move |&c| self.free[i][c]).map(move |c| f[c])),
+        );
+        let reaction = crate::solve::norm2(
+            self.constrained
+                .iter()
+                .map(|c| force[c.point as usize][c.component as usize]),
+        );
+        let scale = applied.max(reaction);
         if scale > 0.0 {
-            r2.sqrt() / scale
+            r / scale
         } else {
-            r2.sqrt()
+            r
         }
     }
 
@@ -893,15 +1113,12 @@ impl Relaxation<'_> {
         }
         let mut f_ext = vec![[0.0; 3]; n];
         self.loads.add_into(0.0, &mut f_ext);
-        let mut applied = 0.0;
-        for (f, free) in f_ext.iter().zip(&self.free) {
-            for c in 0..3 {
-                if free[c] {
-                    applied += f[c] * f[c];
-                }
-            }
-        }
-        let applied = f64::sqrt(applied);
+        let applied = crate::solve::norm2(
+            f_ext
+                .iter()
+                .zip(&self.free)
+                .flat_map(|(f, free)| (0..3).filter(|&c| free[c]).map(|c| f[c])),
+        );
         let mut force = vec![[0.0; 3]; n];
         let mut previous = vec![[0.0; 3]; n];
         let mut v = vec![[0.0; 3]; n];
@@ -933,15 +1150,6 @@ impl Relaxation<'_> {
             let last = converged || step == self.steps;
             if step % dy.record_every == 0 || last {
                 let clock = Instant::now();
-                if let Some(i) = first_non_finite(&u, &v) {
-                    return Err(NumericalError::Diverged {
-                        step,
-                        time: step as f64,
-                        point: i,
-                        position: self.kernel.disc().points.x[i],
-                    }
-                    .into());
-                }
                 records.push(Record {
                     step,
                     time: step as f64,
@@ -1024,6 +1232,22 @@ impl Relaxation<'_> {
                 }
             });
             residual = self.residual(&force, applied);
+            // Checked every step: the residual reduces every force.
+            if !residual.is_finite() {
+                let point = first_non_finite(&u, &v)
+                    .or_else(|| force.iter().position(|f| f.iter().any(|x| !x.is_finite())))
+                    .unwrap_or(0);
+                return Err(NumericalError::Diverged {
+                    step,
+                    time: step as f64,
+                    point,
+                    position: self.kernel.disc().points.x[point],
+                    cause: "dynamic relaxation's out-of-balance force left double precision: \
+                            the loads or prescribed displacements are too large for this body"
+                        .to_string(),
+                }
+                .into());
+            }
             observer.progress(step, self.steps, step as f64, 0);
         }
         let integration = start.elapsed().as_secs_f64() - output_seconds;
