@@ -1383,7 +1383,8 @@ fn point_file_scene(d: usize, default_material: bool) -> String {
 }
 
 /// Checks one point-file parse against the text: points for every data line, or
-/// an error naming the first bad data line (or `.path` when there is none).
+/// an error naming the first bad data line (or `.path` when there is none). A
+/// leading UTF-8 byte-order mark is not data (issue 17 item 10).
 fn check_point_file(
     text: &str,
     result: &Result<Vec<dhpd::geometry::grid::RawPoint>, InputError>,
@@ -1393,6 +1394,8 @@ fn check_point_file(
     materials: &[Material],
 ) -> Result<(), TestCaseError> {
     let data: Vec<usize> = text
+        .strip_prefix('\u{feff}')
+        .unwrap_or(text)
         .lines()
         .enumerate()
         .filter(|(_, l)| {
