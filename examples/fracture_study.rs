@@ -19,13 +19,13 @@
 use dhpd::drivers::quasi_static::{self, Observer, QuasiStaticSolution, Snapshot, StepRecord};
 use dhpd::drivers::static_solve;
 use dhpd::error::Error;
-use dhpd::geometry::{norm, sub};
 use dhpd::output::csv::write_load_displacement;
 use dhpd::reference::FemReference;
 use dhpd::solve::pipeline::Route;
 use dhpd::validation::fracture::{
     Loading, Sent, FRACTURE_ENERGY, INCLINED_HALF_LENGTH, NOTCH, WIDTH,
 };
+use dhpd::vector::{norm, sub};
 use std::fmt::Write as _;
 use std::path::Path;
 use std::time::Instant;

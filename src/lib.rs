@@ -55,11 +55,13 @@ pub mod discretization;
 pub mod drivers;
 pub mod error;
 pub mod geometry;
+pub mod memory;
 pub mod model;
 pub mod output;
 pub mod reference;
 pub mod scene;
 pub mod solve;
 pub mod validation;
+pub mod vector;
 
 pub use error::{Error, InputError, NumericalError};

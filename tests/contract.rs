@@ -111,7 +111,7 @@ fn check_rigid_motion<M: Model>(model: &M, disc: &Discretization) {
     let w = 1e-3;
     let small: Vec<[f64; 3]> = x
         .iter()
-        .map(|p| std::array::from_fn(|a| w * dhpd::geometry::cross(&axis, p)[a]))
+        .map(|p| std::array::from_fn(|a| w * dhpd::vector::cross(&axis, p)[a]))
         .collect();
     let f = internal_forces(model, disc, &small, true);
     assert!(
@@ -123,8 +123,8 @@ fn check_rigid_motion<M: Model>(model: &M, disc: &Discretization) {
         .iter()
         .map(|p| {
             // Rodrigues: R p − p.
-            let kxp = dhpd::geometry::cross(&axis, p);
-            let kdp = dhpd::geometry::dot(&axis, p);
+            let kxp = dhpd::vector::cross(&axis, p);
+            let kdp = dhpd::vector::dot(&axis, p);
             std::array::from_fn(|a| c * p[a] + s * kxp[a] + (1.0 - c) * kdp * axis[a] - p[a])
         })
         .collect();

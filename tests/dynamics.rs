@@ -33,8 +33,8 @@ fn run(text: &str, probes: &[usize]) -> DynamicsSolution {
 fn nearest(disc: &discretization::Discretization, at: [f64; 3]) -> usize {
     (0..disc.points.len())
         .min_by(|&a, &b| {
-            let da = dhpd::geometry::norm(&dhpd::geometry::sub(&disc.points.x[a], &at));
-            let db = dhpd::geometry::norm(&dhpd::geometry::sub(&disc.points.x[b], &at));
+            let da = dhpd::vector::norm(&dhpd::vector::sub(&disc.points.x[a], &at));
+            let db = dhpd::vector::norm(&dhpd::vector::sub(&disc.points.x[b], &at));
             da.total_cmp(&db)
         })
         .expect("points")

@@ -16,7 +16,7 @@ use dhpd::model::shear::Shear;
 use dhpd::model::Model;
 use dhpd::scene::Scene;
 use dhpd::solve::low_rank::Term;
-use dhpd::solve::pipeline::{Pipeline, Route, SolverSettings};
+use dhpd::solve::pipeline::{Pipeline, Route};
 use dhpd::validation::fracture::Sent;
 
 /// Collects what a run shows, checking bonds and damage at every snapshot.
@@ -182,7 +182,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         let scene = case.scene();
         let prepared = static_solve::prepare(&scene).unwrap();
         let (mut disc, dofs, f_ext) = (prepared.disc, prepared.dofs, prepared.f_ext);
-        let settings = SolverSettings::of(&scene);
+        let (settings, hints) = (scene.solver, static_solve::solver_hints(&scene));
         let surrogate = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
         // Bonds that cross the ligament right ahead of the notch tip.
         let ahead: Vec<usize> = (0..disc.points.len())
@@ -198,7 +198,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         let (fresh, reused, iterations) = if model_kind == "bond_based" {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
             let mut pipeline =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
@@ -208,11 +208,11 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let mut other =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
             let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
             // The exact low-rank update of the old factor (one term per broken bond).
             let mut updated =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, None).unwrap();
+                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
             let mut intact = disc.clone();
             intact.bonds.intact.iter_mut().for_each(|f| *f = true);
             let k0 = Stiffness::assemble(&model, &intact, &dofs, updated.pattern());
@@ -256,6 +256,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 &dofs,
                 model.coupling(),
                 settings,
+                hints,
                 Some(surrogate.clone()),
             )
             .unwrap();
@@ -272,9 +273,15 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
             let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
             assert_eq!(reused.report.route, Route::Reuse);
-            let mut other =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, Some(surrogate))
-                    .unwrap();
+            let mut other = Pipeline::analyse(
+                &disc,
+                &dofs,
+                model.coupling(),
+                settings,
+                hints,
+                Some(surrogate),
+            )
+            .unwrap();
             let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
             (fresh.x, reused.x, reused.report.iterations)
         };
@@ -346,7 +353,7 @@ fn grip_work_and_peak_load_against_the_energy_the_bonds_carry() {
         for b in bonds.owned_by(i) {
             let j = bonds.neighbour[b] as usize;
             let s0 = criterion.critical(i);
-            let len = dhpd::geometry::norm(&dhpd::geometry::sub(&x[j], &x[i]));
+            let len = dhpd::vector::norm(&dhpd::vector::sub(&x[j], &x[i]));
             let energy =
                 0.5 * model.micromodulus[i] * s0 * s0 * len * v[i] * v[j] * bonds.volume_factor[b];
             if x[i][1] * x[j][1] < 0.0 && {

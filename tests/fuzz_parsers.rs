@@ -1461,8 +1461,8 @@ proptest! {
     ) {
         let dir = TempDir::new("points");
         let materials = vec![
-            Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None },
-            Material { name: "stiff".into(), youngs_modulus: 2e9, poisson_ratio: 0.25, fracture: None },
+            Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None, density: None },
+            Material { name: "stiff".into(), youngs_modulus: 2e9, poisson_ratio: 0.25, fracture: None, density: None },
         ];
         let file = PointFile {
             path: dir.path().join("pts.xyz"),
@@ -1512,7 +1512,7 @@ proptest! {
         ],
         d in 1usize..=3,
     ) {
-        let materials = vec![Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None }];
+        let materials = vec![Material { name: "soft".into(), youngs_modulus: 1e9, poisson_ratio: 0.25, fracture: None, density: None }];
         let file = PointFile {
             path: PathBuf::from("pts.xyz"),
             field: "point_files[0]".into(),
@@ -1574,6 +1574,7 @@ fn gap_point_file_spacing_overflow_is_rejected() {
         youngs_modulus: 1e9,
         poisson_ratio: 0.25,
         fracture: None,
+        density: None,
     }];
     let file = PointFile {
         path: PathBuf::from("pts.xyz"),

@@ -147,9 +147,9 @@ use dhpd::assembly::forces::internal_forces;
 use dhpd::discretization::partial_volume::PartialVolume;
 use dhpd::discretization::Discretization;
 use dhpd::drivers::static_solve::solve;
-use dhpd::geometry::norm;
 use dhpd::model::bond_based::BondBased;
 use dhpd::model::Model;
+use dhpd::vector::norm;
 use std::time::Instant;
 
 /// Spacing of the coarse region (m); the fine region has `HC / r`.

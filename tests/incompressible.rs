@@ -48,7 +48,7 @@ fn run(label: &str, gradient: bool, method: SolverMethod) -> (StaticSolution, Ho
     let reference = FemReference::from_file(&path).expect("reference JSON");
     let mut scene = CASE.plane_strain_scene(nu);
     scene.gradient_dilatation = gradient;
-    scene.solver = method;
+    scene.solver.method = method;
     let t = Instant::now();
     let s = solve(&scene).expect("solves");
     let seconds = t.elapsed().as_secs_f64();

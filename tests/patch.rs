@@ -49,7 +49,7 @@ fn force_scale(model: &BondBased, disc: &Discretization, u: &[[f64; 3]]) -> Vec<
         let r = disc.bonds.owned_by(i);
         dhpd::model::Model::owner_forces(model, disc, i, u, true, &mut out[r.clone()]);
         for b in r {
-            let m = dhpd::geometry::norm(&out[b]);
+            let m = dhpd::vector::norm(&out[b]);
             scale[i] += m;
             scale[disc.bonds.neighbour[b] as usize] += m;
         }
@@ -129,7 +129,7 @@ fn check_patch(setting: &str, jump: bool) -> usize {
         for i in 0..disc.points.len() {
             // The shift of half a spacing accounts for the cell-centred grid.
             if clearance(&disc, i, jump_at) + 0.5 * disc.points.spacing[i] > reach {
-                let r = dhpd::geometry::norm(&f[i]);
+                let r = dhpd::vector::norm(&f[i]);
                 assert!(r <= 1e-11 * mag[i], "{setting} (jump {jump}, linear {linear}): point {i} at {:?} has force {r:e} of {:e}", disc.points.x[i], mag[i]);
                 checked += 1;
             }
@@ -172,7 +172,7 @@ fn horizon_jump_residual_is_local() {
     let mag = force_scale(&model, &disc, &u);
     let worst = (0..disc.points.len())
         .filter(|&i| (disc.points.x[i][0] - 3.0).abs() < 0.2 * 3.015)
-        .map(|i| dhpd::geometry::norm(&f[i]) / mag[i])
+        .map(|i| dhpd::vector::norm(&f[i]) / mag[i])
         .fold(0.0f64, f64::max);
     eprintln!("1D horizon jump (spacing ratio 2): largest patch residual {worst:.3e} of the bond-force sum");
     assert!(

@@ -204,8 +204,8 @@ fn rigid_rotation_gives_zero_stress() {
                     .x
                     .iter()
                     .map(|p| {
-                        let kxp = dhpd::geometry::cross(&axis, p);
-                        let kdp = dhpd::geometry::dot(&axis, p);
+                        let kxp = dhpd::vector::cross(&axis, p);
+                        let kdp = dhpd::vector::dot(&axis, p);
                         std::array::from_fn(|a| {
                             c * p[a] + s * kxp[a] + (1.0 - c) * kdp * axis[a] - p[a]
                         })
@@ -228,7 +228,7 @@ fn rigid_rotation_gives_zero_stress() {
                 .points
                 .x
                 .iter()
-                .map(|p| dhpd::geometry::cross(&axis, p).map(|v| 1e-4 * v))
+                .map(|p| dhpd::vector::cross(&axis, p).map(|v| 1e-4 * v))
                 .collect();
             let mut lin: f64 = 0.0;
             for i in 0..disc.points.len() {

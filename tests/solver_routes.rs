@@ -14,8 +14,8 @@
 //! exported K by scipy's eigsh: 1.07e9 and 32.1), so its bound is 1e-9 there.
 
 use dhpd::drivers::static_solve::{self, StaticSolution};
+use dhpd::scene::Ordering;
 use dhpd::scene::{parse_spec, Scene};
-use dhpd::solve::ordering::Ordering;
 use std::path::Path;
 
 fn solve(text: &str, solver: &str) -> StaticSolution {

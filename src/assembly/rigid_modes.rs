@@ -75,7 +75,7 @@ fn check_body(
     }
     let size = points
         .iter()
-        .map(|&i| crate::geometry::norm(&crate::geometry::sub(&x[i], &c)))
+        .map(|&i| crate::vector::norm(&crate::vector::sub(&x[i], &c)))
         .fold(0.0, f64::max)
         .max(f64::MIN_POSITIVE);
     let modes = match d {
@@ -96,7 +96,7 @@ fn check_body(
         let axis = if d == 2 { 2 } else { k - d };
         let mut w = [0.0; 3];
         w[axis] = 1.0;
-        crate::geometry::cross(&w, &r)[comp]
+        crate::vector::cross(&w, &r)[comp]
     };
     let mut gram = [[0.0; 6]; 6];
     for &i in points {
@@ -162,12 +162,12 @@ fn describe(v: &[f64; 6], d: usize, c: &[f64; 3], size: f64) -> String {
         }
         _ => {
             let w = [v[3] / size, v[4] / size, v[5] / size];
-            let wn = crate::geometry::norm(&w);
+            let wn = crate::vector::norm(&w);
             if wn * size < 1e-6 {
                 format!("translation along ({})", fmt(&t))
             } else {
                 let tt = [t[0], t[1], t[2]];
-                let shift = crate::geometry::cross(&w, &tt);
+                let shift = crate::vector::cross(&w, &tt);
                 let p: Vec<f64> = (0..3).map(|a| c[a] + shift[a] / (wn * wn)).collect();
                 format!(
                     "rotation about axis ({}) through ({})",

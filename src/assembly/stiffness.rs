@@ -178,7 +178,7 @@ impl Stiffness {
     /// exactly by an FMA, the sums compensated) and rounded once, so it is
     /// accurate to about ε of the result rather than ε of `|K||x|`: what
     /// iterative refinement needs when the residual of a double-precision
-    /// product is all round-off ([`crate::solve::refine_extended`]).
+    /// product is all round-off (the solver's extended refinement).
     pub fn residual_extended(&self, pattern: &Pattern, x: &[f64], b: &[f64]) -> Vec<f64> {
         // Each row's sum as an unevaluated pair (hi, lo).
         let mut hi = b.to_vec();

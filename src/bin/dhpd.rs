@@ -231,8 +231,8 @@ fn print_fracture_report(scene: &Scene, s: &quasi_static::QuasiStaticSolution, d
     );
     for (k, name) in s.set_names.iter().enumerate() {
         if let Some(peak) = s.records.iter().max_by(|a, b| {
-            dhpd::geometry::magnitude(&a.reactions[k])
-                .total_cmp(&dhpd::geometry::magnitude(&b.reactions[k]))
+            dhpd::vector::magnitude(&a.reactions[k])
+                .total_cmp(&dhpd::vector::magnitude(&b.reactions[k]))
         }) {
             let f = peak.reactions[k];
             println!(

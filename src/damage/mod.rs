@@ -76,7 +76,6 @@
 
 use crate::discretization::Discretization;
 use crate::geometry::grid::Source;
-use crate::model::bond_based;
 use crate::model::Model;
 use crate::scene::{
     Calibration, Dimension, EnergyCounting, FractureParameter, ModelKind, Scene, ShearCriterion,
@@ -220,13 +219,12 @@ fn continuum_critical_value(scene: &Scene, disc: &Discretization, i: usize, g0: 
             } else {
                 scene.thickness
             };
-            let c = 2.0
-                * bond_based::micromodulus(scene.dimension, material, horizon, scene.thickness)
-                * per_unit;
+            let c =
+                2.0 * material.micromodulus(scene.dimension, horizon, scene.thickness) * per_unit;
             critical_stretch(disc.d, c, horizon, g0)
         }
         ModelKind::Shear => {
-            let (_, mu) = crate::model::shear::moduli(scene.dimension, material);
+            let (_, mu) = material.moduli(scene.dimension);
             critical_deviatoric_strain(disc.d, mu, horizon, g0, scene.fracture.shear_energy)
         }
     }
@@ -281,7 +279,7 @@ impl Criterion {
                 (0..p.len())
                     .map(|i| {
                         let material = &scene.materials[p.material[i] as usize];
-                        let (kappa, mu) = crate::model::shear::moduli(scene.dimension, material);
+                        let (kappa, mu) = material.moduli(scene.dimension);
                         (0.5 * kappa, disc.d as f64 * mu)
                     })
                     .collect::<Vec<_>>()
@@ -440,6 +438,7 @@ mod tests {
             youngs_modulus: e,
             poisson_ratio: nu,
             fracture: None,
+            density: None,
         }
     }
 
@@ -463,9 +462,9 @@ mod tests {
             (Dimension::Three, 3, (5.0 * g0 / (6.0 * e * delta)).sqrt()),
         ];
         for (dim, d, expected) in cases {
-            let m = material(e, bond_based::implied_poisson_ratio(dim));
+            let m = material(e, crate::scene::material::bond_based_poisson_ratio(dim));
             let per_unit = if d == 3 { 1.0 } else { t };
-            let c = 2.0 * bond_based::micromodulus(dim, &m, delta, t) * per_unit;
+            let c = 2.0 * m.micromodulus(dim, delta, t) * per_unit;
             let s0 = critical_stretch(d, c, delta, g0);
             assert!(
                 (s0 / expected - 1.0).abs() < 1e-14,

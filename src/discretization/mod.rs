@@ -25,8 +25,9 @@ pub mod partial_volume;
 use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::grid::{self, RawPoint, Source};
 use crate::geometry::mesh_file::{self, MeshGroup};
-use crate::geometry::{norm, point_file, sub};
+use crate::geometry::point_file;
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
+use crate::vector::{norm, sub};
 use groups::PointGroup;
 use std::ops::Range;
 
@@ -285,7 +286,7 @@ pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error>
             d,
             &scene.cracks,
             scene.volume_correction,
-            scene.memory_limit_bytes,
+            scene.solver.memory_limit_bytes,
         )?;
         let touches = bonds.touch_counts(points.len());
         let isolated: Vec<usize> = (0..points.len()).filter(|&i| touches[i] == 0).collect();

@@ -3,9 +3,10 @@
 use super::partial_volume::PartialVolume;
 use super::{Bonds, Points};
 use crate::error::{Error, InputError};
-use crate::geometry::{crosses, norm, sub};
+use crate::geometry::crosses;
+use crate::memory::{check_memory, memory_limit};
 use crate::scene::{Crack, VolumeCorrection};
-use crate::solve::{check_memory, memory_limit};
+use crate::vector::{norm, sub};
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -133,7 +134,7 @@ const NEAR_DUPLICATE: f64 = 1e-9;
 /// and their distance (exact duplicates are refused before the search).
 fn near_duplicate(points: &Points, i: usize, j: usize) -> InputError {
     let (a, b) = (i.min(j), i.max(j));
-    let distance = crate::geometry::magnitude(&sub(&points.x[b], &points.x[a]));
+    let distance = crate::vector::magnitude(&sub(&points.x[b], &points.x[a]));
     InputError::new(
         points.source[b].to_string(),
         format!(

@@ -28,8 +28,8 @@
 
 use crate::error::InputError;
 use crate::geometry::grid::{RawPoint, Source};
-use crate::geometry::{norm, sub};
 use crate::scene::Region;
+use crate::vector::{norm, sub};
 use std::collections::HashMap;
 
 /// Fraction of its equivalent spacing within which an unstructured point's cell

@@ -14,7 +14,7 @@ use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::Model;
 use crate::scene::{Dimension, ModelKind, Scene};
-use crate::solve::pipeline::{Pipeline, SolverSettings};
+use crate::solve::pipeline::{Hints, Pipeline};
 use crate::solve::PivotStats;
 use serde::Serialize;
 use std::time::Instant;
@@ -215,6 +215,20 @@ fn warn_near_incompressible(scene: &Scene) {
     }
 }
 
+/// What the solver should know about `scene` besides its matrix: a fracture
+/// run, or a shear-model body with a nearly incompressible material
+/// ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]).
+pub fn solver_hints(scene: &Scene) -> Hints {
+    Hints {
+        fracture: scene.quasi_static.is_some(),
+        near_incompressible: scene.model == ModelKind::Shear
+            && scene
+                .materials
+                .iter()
+                .any(|m| m.poisson_ratio >= crate::model::shear::NEAR_INCOMPRESSIBLE),
+    }
+}
+
 /// Discretises and solves the static problem of `scene`.
 pub fn solve(scene: &Scene) -> Result<StaticSolution, Error> {
     prepare(scene)?.solve(scene)
@@ -240,7 +254,8 @@ pub fn solve_with<M: Model>(
         &disc,
         &dofs,
         model.coupling(),
-        SolverSettings::of(scene),
+        scene.solver,
+        solver_hints(scene),
         Some(BondBased::new(
             &disc,
             scene.dimension,

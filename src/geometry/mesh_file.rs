@@ -214,7 +214,7 @@ fn facet(
     };
     let x = |k: usize| mesh.nodes[corners[k]];
     let area = match corners.len() {
-        2 => crate::geometry::norm(&crate::geometry::sub(&x(1), &x(0))) * thickness,
+        2 => crate::vector::norm(&crate::vector::sub(&x(1), &x(0))) * thickness,
         3 => triangle(&x(0), &x(1), &x(2)),
         4 => triangle(&x(0), &x(1), &x(2)) + triangle(&x(0), &x(2), &x(3)),
         _ => 0.0,
@@ -237,6 +237,6 @@ fn facet(
 }
 
 fn triangle(a: &[f64; 3], b: &[f64; 3], c: &[f64; 3]) -> f64 {
-    let (u, v) = (crate::geometry::sub(b, a), crate::geometry::sub(c, a));
-    0.5 * crate::geometry::norm(&crate::geometry::cross(&u, &v))
+    let (u, v) = (crate::vector::sub(b, a), crate::vector::sub(c, a));
+    0.5 * crate::vector::norm(&crate::vector::cross(&u, &v))
 }

@@ -1,5 +1,5 @@
-//! Geometry: small vector helpers, point generators (regular grids, point files),
-//! holes and pre-crack intersection tests.
+//! Geometry: point generators (regular grids, point files, Gmsh meshes) and
+//! pre-crack intersection tests.
 //!
 //! Coordinates are always `[f64; 3]`; axes beyond the scene's dimension are zero.
 
@@ -9,41 +9,7 @@ pub mod mesh_file;
 pub mod point_file;
 
 use crate::scene::Crack;
-
-/// `a - b`.
-#[inline]
-pub fn sub(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-
-/// `a · b`.
-#[inline]
-pub fn dot(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-/// `|a|`.
-#[inline]
-pub fn norm(a: &[f64; 3]) -> f64 {
-    dot(a, a).sqrt()
-}
-
-/// `|a|` without overflow or underflow of the squares (`hypot`), for the
-/// reported forces: a reaction of 1e-295 N keeps its magnitude (`norm` gives 0).
-#[inline]
-pub fn magnitude(a: &[f64; 3]) -> f64 {
-    a[0].hypot(a[1]).hypot(a[2])
-}
-
-/// `a × b`.
-#[inline]
-pub fn cross(a: &[f64; 3], b: &[f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
+use crate::vector::{cross, dot, norm, sub};
 
 /// Relative tolerance of the crossing test at the crack's own edges.
 const EDGE_TOLERANCE: f64 = 1e-9;

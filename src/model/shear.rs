@@ -53,22 +53,10 @@ pub const NEAR_INCOMPRESSIBLE: f64 = 0.49;
 use super::{Block, Column, Coupling, Model};
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
-use crate::geometry::{dot, sub};
 use crate::scene::{Dimension, Material};
+use crate::vector::{dot, sub};
 
 type Mat3 = [[f64; 3]; 3];
-
-/// Bulk and shear moduli `(κ, μ)` of a material in a setting.
-pub fn moduli(dim: Dimension, m: &Material) -> (f64, f64) {
-    let (e, nu) = (m.youngs_modulus, m.poisson_ratio);
-    let mu = e / (2.0 * (1.0 + nu));
-    let kappa = match dim {
-        Dimension::PlaneStress => e / (2.0 * (1.0 - nu)),
-        Dimension::PlaneStrain => e / (2.0 * (1.0 + nu) * (1.0 - 2.0 * nu)),
-        Dimension::Three | Dimension::One => e / (3.0 * (1.0 - 2.0 * nu)),
-    };
-    (kappa, mu)
-}
 
 /// What an owner's kernels need, computed once per set of intact bonds.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -126,7 +114,7 @@ impl Shear {
         let owners = (0..disc.points.len())
             .into_par_iter()
             .map(|i| {
-                let (kappa, mu) = moduli(dim, &materials[disc.points.material[i] as usize]);
+                let (kappa, mu) = materials[disc.points.material[i] as usize].moduli(dim);
                 owner_data(disc, i, kappa, mu).ok_or(NumericalError::SingularShapeTensor {
                     point: i,
                     position: disc.points.x[i],

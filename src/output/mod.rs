@@ -16,9 +16,9 @@ use crate::discretization::Discretization;
 use crate::drivers::quasi_static::QuasiStaticSolution;
 use crate::drivers::static_solve::StaticSolution;
 use crate::error::{Error, InputError, NumericalError};
-use crate::geometry::{dot, norm, sub};
 use crate::model::Block;
 use crate::scene::Scene;
+use crate::vector::{dot, norm, sub};
 use std::path::{Path, PathBuf};
 
 /// The points each requested profile and probe reads, resolved before solving.

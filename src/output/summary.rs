@@ -44,7 +44,7 @@ pub fn write(
 ) -> Result<(), Error> {
     let max_displacement =
         s.u.iter()
-            .map(|u| crate::geometry::norm(u))
+            .map(|u| crate::vector::norm(u))
             .fold(0.0, f64::max);
     let summary = Summary {
         scene: &scene.name,
@@ -192,13 +192,13 @@ pub fn write_quasi_static(
                 .records
                 .iter()
                 .max_by(|a, b| {
-                    crate::geometry::magnitude(&a.reactions[k])
-                        .total_cmp(&crate::geometry::magnitude(&b.reactions[k]))
+                    crate::vector::magnitude(&a.reactions[k])
+                        .total_cmp(&crate::vector::magnitude(&b.reactions[k]))
                 })
                 .expect("a run has its initial record");
             Peak {
                 name: name.clone(),
-                magnitude: crate::geometry::magnitude(&best.reactions[k]),
+                magnitude: crate::vector::magnitude(&best.reactions[k]),
                 force: best.reactions[k],
                 step: best.step,
                 load_factor: best.load_factor,

@@ -3,10 +3,12 @@
 //! No numerics happen here. Every check names the offending field with a dotted
 //! path (`regions[1].spacing`) and says what would be valid. Checks that need the
 //! points (a boundary box that selects nothing, a traction face with no point)
-//! are done by [`crate::discretization`] right after the points exist and before
+//! are done by the discretisation right after the points exist and before
 //! any bond is built.
 
 mod dynamics;
+pub mod material;
+pub mod solver;
 mod spec;
 mod validate;
 
@@ -14,12 +16,13 @@ pub use dynamics::{
     Dynamics, Gaussian, InitialCondition, Motion, RunLength, TimeFunction,
     MAX_STEPS as MAX_DYNAMICS_STEPS,
 };
+pub use material::{FractureParameter, Material};
+pub use solver::{Ordering, Precision, SolverMethod, SolverSettings};
 pub use spec::*;
 pub use validate::{
-    bond_stiffness_in_range, length_in_range, Aabb, Crack, FractureParameter, FractureSettings,
-    Hole, HorizonRule, Load, LoadTarget, Material, MeshFile, OutputSettings, PointFile, Prescribed,
-    Probe, Profile, QuasiStatic, Region, Scene, Selection, MAX_HORIZON_FACTOR, MAX_LENGTH,
-    MIN_LENGTH,
+    bond_stiffness_in_range, length_in_range, Aabb, Crack, FractureSettings, Hole, HorizonRule,
+    Load, LoadTarget, MeshFile, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic,
+    Region, Scene, Selection, MAX_HORIZON_FACTOR, MAX_LENGTH, MIN_LENGTH,
 };
 
 use crate::error::{Error, InputError};

@@ -3,6 +3,7 @@
 //! Every section rejects unknown keys. Defaults are documented on each field;
 //! [`crate::scene::Scene::try_from_spec`] validates these raw values into a typed scene.
 
+use super::solver::{Ordering, Precision, SolverMethod};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -500,23 +501,6 @@ pub struct LoadSpec {
     pub time_function: Option<TimeFunctionSpec>,
 }
 
-/// Linear solver.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum SolverMethod {
-    /// Sparse Cholesky (symmetric positive definite), default.
-    #[default]
-    Cholesky,
-    /// Sparse LU: explicit fallback, and the default for the shear model.
-    Lu,
-    /// GMRES on `K`, preconditioned by the Cholesky factor of `(K + Kᵀ)/2`.
-    Gmres,
-    /// CG on `K` (GMRES for a non-symmetric `K`) preconditioned by the
-    /// Cholesky factor of a short-range bond-based stiffness: no factor of `K`
-    /// is stored ([`crate::solve::short_range`]).
-    Iterative,
-}
-
 /// `[solver]`
 #[derive(Debug, Clone, Default, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -525,8 +509,9 @@ pub struct SolverSpec {
     /// the bond-based model, GMRES preconditioned by the Cholesky factor of the
     /// bond-based stiffness for the shear model (its tangent is 0.2-0.7 %
     /// asymmetric). Either default switches to `"iterative"` (Krylov on `K`
-    /// preconditioned by the factor of a short-range stiffness) when no factor
-    /// fits in memory.
+    /// preconditioned by a two-level cycle, no factor of `K`) when no factor
+    /// fits in memory or a factor would cost more than 2e4 operations per
+    /// entry of `K` (outside fracture runs).
     pub method: Option<SolverMethod>,
     /// Largest sparse factor to attempt, in GiB (default and upper bound: 90 % of
     /// the memory available when the factorisation starts). A larger factor is
@@ -540,11 +525,11 @@ pub struct SolverSpec {
     /// Fill-reducing ordering of the Cholesky factor: `"auto"` (default: AMD and
     /// nested dissection both analysed, the smaller factor kept), `"amd"` or
     /// `"nested_dissection"`.
-    pub ordering: Option<crate::solve::ordering::Ordering>,
+    pub ordering: Option<Ordering>,
     /// Precision of the Cholesky factor: `"auto"` (default: double, single when
     /// only that fits in memory), `"double"` or `"mixed"` (single-precision
     /// factor, full accuracy recovered by CG or GMRES preconditioned by it).
-    pub precision: Option<crate::solve::pipeline::Precision>,
+    pub precision: Option<Precision>,
 }
 
 /// `[output]`

@@ -1,8 +1,9 @@
 //! Validation of a [`SceneSpec`] into a typed [`Scene`].
 
+use super::material::{self, FractureParameter, Material};
+use super::solver::{Precision, SolverSettings};
 use super::spec::*;
 use crate::error::{approx, echo_list, num, InputError};
-use crate::model::bond_based;
 use std::path::{Path, PathBuf};
 
 /// The largest number of grid points a scene may generate.
@@ -29,30 +30,6 @@ impl Aabb {
             x[a] >= self.min[a] - tol && x[a] <= self.max[a] + tol
         })
     }
-}
-
-/// A validated material.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Material {
-    /// Name from the scene.
-    pub name: String,
-    /// Young's modulus in Pa.
-    pub youngs_modulus: f64,
-    /// Poisson ratio (the model's implied value when not given).
-    pub poisson_ratio: f64,
-    /// How bonds of this material break (None: they never do).
-    pub fracture: Option<FractureParameter>,
-}
-
-/// A material's fracture parameter, as the scene gives it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum FractureParameter {
-    /// Fracture energy G₀ (J/m²); the critical value follows from the owner's horizon.
-    Energy(f64),
-    /// Critical stretch s₀ (bond-based).
-    CriticalStretch(f64),
-    /// Critical deviatoric bond strain ε^d_max (shear model).
-    CriticalDeviatoricStrain(f64),
 }
 
 /// Bond breakage settings shared by the drivers that break bonds.
@@ -289,19 +266,8 @@ pub struct Scene {
     pub boundaries: Vec<Prescribed>,
     /// Loads.
     pub loads: Vec<Load>,
-    /// Solver method.
-    pub solver: SolverMethod,
-    /// `solver.method` was not given: the pipeline may choose the iterative route.
-    pub solver_automatic: bool,
-    /// User limit on the size of a sparse factor in bytes (`solver.memory_limit_gib`).
-    pub memory_limit_bytes: Option<f64>,
-    /// Fill-reducing ordering of the Cholesky factor (`solver.ordering`).
-    pub ordering: crate::solve::ordering::Ordering,
-    /// Precision of the Cholesky factor (`solver.precision`).
-    pub precision: crate::solve::pipeline::Precision,
-    /// Iterations of a re-solve with the previous factor before refactorising
-    /// (`solver.refactor_iterations`; None: chosen from measured costs).
-    pub refactor_iterations: Option<usize>,
+    /// The `[solver]` section.
+    pub solver: SolverSettings,
     /// Output settings.
     pub output: OutputSettings,
     /// Bond breakage settings (used by fracture runs only).
@@ -672,7 +638,7 @@ impl Scene {
                 ));
             }
         }
-        if spec.solver.precision == Some(crate::solve::pipeline::Precision::Mixed)
+        if spec.solver.precision == Some(Precision::Mixed)
             && (quasi_static.is_some() || dynamics.is_some())
         {
             return Err(InputError::new(
@@ -681,26 +647,7 @@ impl Scene {
                  which needs double precision; explicit runs factorise nothing)",
             ));
         }
-        if spec.solver.method == Some(SolverMethod::Iterative) {
-            for (key, present) in [
-                ("solver.ordering", spec.solver.ordering.is_some()),
-                ("solver.precision", spec.solver.precision.is_some()),
-            ] {
-                if present {
-                    return Err(InputError::new(
-                        key,
-                        "applies to the direct factor, which solver.method = \"iterative\" \
-                         does not compute; remove it or choose \"cholesky\" or \"gmres\"",
-                    ));
-                }
-            }
-        }
-        if spec.solver.refactor_iterations == Some(0) {
-            return Err(InputError::new(
-                "solver.refactor_iterations",
-                "0 would refactorise before every re-solve; give at least 1",
-            ));
-        }
+        let solver = super::solver::validate(&spec.solver, spec.model.kind)?;
         let scene_name = match &spec.name {
             Some(n) => {
                 name("name", n)?;
@@ -726,21 +673,7 @@ impl Scene {
             cracks,
             boundaries,
             loads,
-            solver: spec.solver.method.unwrap_or(match spec.model.kind {
-                ModelKind::BondBased => SolverMethod::Cholesky,
-                ModelKind::Shear => SolverMethod::Gmres,
-            }),
-            solver_automatic: spec.solver.method.is_none(),
-            ordering: spec.solver.ordering.unwrap_or_default(),
-            precision: spec.solver.precision.unwrap_or_default(),
-            memory_limit_bytes: match spec.solver.memory_limit_gib {
-                Some(gib) => {
-                    positive("solver.memory_limit_gib", gib)?;
-                    Some(gib * GIB)
-                }
-                None => None,
-            },
-            refactor_iterations: spec.solver.refactor_iterations,
+            solver,
             output,
             fracture,
             quasi_static,
@@ -766,7 +699,7 @@ impl Scene {
         }
         if scene.model == ModelKind::BondBased {
             for (m, spec_m) in scene.materials.iter().zip(spec.materials.values()) {
-                bond_based::check_material(
+                material::check_bond_based(
                     dimension,
                     m,
                     spec_m.poisson_ratio.is_some(),
@@ -810,7 +743,7 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
             "no material defined: add [materials.NAME] with youngs_modulus",
         ));
     }
-    let implied = bond_based::implied_poisson_ratio(spec.model.dimension);
+    let implied = material::bond_based_poisson_ratio(spec.model.dimension);
     spec.materials
         .iter()
         .map(|(name, m)| {
@@ -845,6 +778,7 @@ fn materials(spec: &SceneSpec) -> Result<Vec<Material>, InputError> {
                 youngs_modulus: m.youngs_modulus,
                 poisson_ratio: m.poisson_ratio.unwrap_or(implied),
                 fracture: fracture_parameter(&f, m, spec)?,
+                density: m.density,
             })
         })
         .collect()
@@ -1089,9 +1023,8 @@ pub fn bond_stiffness_in_range(
     volume: f64,
     thickness: f64,
 ) -> Result<(), InputError> {
-    let stiffness = |m: &Material| {
-        bond_based::micromodulus(dimension, m, horizon, thickness) * volume * volume / spacing
-    };
+    let stiffness =
+        |m: &Material| m.micromodulus(dimension, horizon, thickness) * volume * volume / spacing;
     let k = stiffness(material);
     if k.is_normal() {
         return Ok(());
@@ -1139,9 +1072,6 @@ pub fn length_in_range(field: &str, what: &str, v: f64) -> Result<(), InputError
     }
     Ok(())
 }
-
-/// Bytes per GiB.
-const GIB: f64 = 1073741824.0;
 
 pub(super) fn positive(field: &str, v: f64) -> Result<(), InputError> {
     if v.is_finite() && v > 0.0 {
@@ -1320,8 +1250,8 @@ fn crack(field: &str, c: &CrackSpec, d: usize) -> Result<Crack, InputError> {
                 coords(&format!("{field}.edge1"), e1, 3)?,
                 coords(&format!("{field}.edge2"), e2, 3)?,
             );
-            let n = crate::geometry::cross(&edge1, &edge2);
-            if crate::geometry::norm(&n) == 0.0 {
+            let n = crate::vector::cross(&edge1, &edge2);
+            if crate::vector::norm(&n) == 0.0 {
                 return Err(InputError::new(
                     field,
                     "edge1 and edge2 are parallel: the crack face has no area",

@@ -14,28 +14,15 @@
 //! order (which, for grids, is already banded).
 //!
 //! The ordering works on any point set (holes, pre-cracks, refined regions,
-//! imported clouds); the driver analyses both orderings and keeps the one
-//! whose factor is smaller ([`Ordering::Auto`]), since the sizes are known from
-//! the symbolic analysis before any value is assembled.
+//! imported clouds); `solver.ordering = "auto"` analyses both orderings and
+//! keeps the one whose factor is cheaper, since the sizes are known from the
+//! symbolic analysis before any value is assembled.
 
 use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 
 /// Points per leaf of the dissection.
 const LEAF: usize = 64;
-
-/// The fill-reducing ordering of the Cholesky factor (`solver.ordering`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Ordering {
-    /// Both analysed; the one with the smaller factor kept.
-    #[default]
-    Auto,
-    /// faer's approximate minimum degree.
-    Amd,
-    /// Geometric nested dissection on the points.
-    NestedDissection,
-}
 
 /// A nested-dissection order and the size of its root separator.
 pub struct Dissection {

@@ -54,20 +54,21 @@
 use super::cg::pcg;
 use super::gmres::{gmres, GmresReport};
 use super::low_rank::{LowRank, Term};
-use super::ordering::{nested_dissection, Dissection, Ordering};
+use super::ordering::{nested_dissection, Dissection};
 use super::two_level::TwoLevel;
 use super::{
-    check_memory, refine, refine_extended, relative_residual, Cholesky, FactorError, PivotStats,
-    SparseLu, GMRES_TOLERANCE,
+    refine, refine_extended, relative_residual, Cholesky, FactorError, PivotStats, SparseLu,
+    GMRES_TOLERANCE,
 };
 use crate::assembly::dofs::DofMap;
 use crate::assembly::pattern::Pattern;
 use crate::assembly::stiffness::Stiffness;
 use crate::discretization::Discretization;
 use crate::error::{Error, InputError, NumericalError};
+use crate::memory::check_memory;
 use crate::model::bond_based::BondBased;
 use crate::model::Coupling;
-use crate::scene::{Scene, SolverMethod};
+use crate::scene::solver::{Ordering, Precision, SolverMethod, SolverSettings};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -116,71 +117,15 @@ const UPDATE_MEMORY: usize = 256 << 20;
 const AUTO_REFACTOR_MIN: usize = 4;
 const AUTO_REFACTOR_MAX: usize = 1000;
 
-/// What the pipeline needs from a scene.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverSettings {
-    /// Route.
-    pub method: SolverMethod,
-    /// User limit on a factor's size (bytes).
-    pub memory_limit_bytes: Option<f64>,
-    /// Re-solve iterations before refactorising (None: from measured costs).
-    pub refactor_iterations: Option<usize>,
-    /// Fill-reducing ordering of the Cholesky factor.
-    pub ordering: Ordering,
-    /// Precision of the Cholesky factor.
-    pub precision: Precision,
-    /// The scene left the route to the solver: a factor that does not fit is
-    /// replaced by the `iterative` route, and so is a costly one outside
-    /// fracture runs.
-    pub automatic: bool,
-    /// A fracture run (re-solves update a direct factor exactly).
+/// What the driver knows about the system that its matrix does not say.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Hints {
+    /// A fracture run: re-solves update a direct factor exactly (low-rank
+    /// terms), which needs it in double precision, and the route stays direct.
     pub fracture: bool,
-    /// The shear model with a nearly incompressible material
-    /// ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]), where the two-level
-    /// preconditioner is weak: cost alone never selects it.
+    /// A nearly incompressible body, where the two-level preconditioner is
+    /// weak: cost alone never selects it.
     pub near_incompressible: bool,
-}
-
-impl SolverSettings {
-    /// The scene's solver settings.
-    pub fn of(scene: &Scene) -> Self {
-        Self {
-            method: scene.solver,
-            memory_limit_bytes: scene.memory_limit_bytes,
-            refactor_iterations: scene.refactor_iterations,
-            ordering: scene.ordering,
-            automatic: scene.solver_automatic,
-            fracture: scene.quasi_static.is_some(),
-            near_incompressible: scene.model == crate::scene::ModelKind::Shear
-                && scene
-                    .materials
-                    .iter()
-                    .any(|m| m.poisson_ratio >= crate::model::shear::NEAR_INCOMPRESSIBLE),
-            // Fracture re-solves update the factor exactly (low-rank terms),
-            // which needs it in double precision.
-            precision: if scene.quasi_static.is_some() {
-                Precision::Double
-            } else {
-                scene.precision
-            },
-        }
-    }
-}
-
-/// The precision of the Cholesky factor (`solver.precision`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Deserialize, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Precision {
-    /// Single precision for large factors (from [`MIXED_FROM_NNZ_L`] entries,
-    /// where it halves the factorisation time) or when only that fits in
-    /// memory; double otherwise.
-    #[default]
-    Auto,
-    /// Double precision.
-    Double,
-    /// Single-precision factor; double-precision accuracy recovered by CG
-    /// (Cholesky route) or GMRES (shear model) preconditioned by it.
-    Mixed,
 }
 
 /// Factor size from which `auto` factorises in single precision: measured on
@@ -476,9 +421,15 @@ impl Pipeline {
         disc: &Discretization,
         dofs: &DofMap,
         coupling: Coupling,
-        settings: SolverSettings,
+        mut settings: SolverSettings,
+        hints: Hints,
         surrogate: Option<BondBased>,
     ) -> Result<Self, Error> {
+        if hints.fracture {
+            // Fracture re-solves update the factor exactly (low-rank terms),
+            // which needs it in double precision.
+            settings.precision = Precision::Double;
+        }
         if settings.method == SolverMethod::Lu && dofs.n_free() > LU_MAX_UNKNOWNS {
             return Err(InputError::new(
                 "solver.method",
@@ -531,8 +482,8 @@ impl Pipeline {
                     .as_ref()
                     .map_or(0.0, |d| d.root_flops() / pattern.nnz().max(1) as f64);
                 if settings.automatic
-                    && !settings.fracture
-                    && !settings.near_incompressible
+                    && !hints.fracture
+                    && !hints.near_incompressible
                     && per_entry_bound > ITERATIVE_FROM_FLOPS_PER_ENTRY
                 {
                     eprintln!(
@@ -552,8 +503,8 @@ impl Pipeline {
                 match choose_precision(&mut chol, structure.nnz(), &settings) {
                     Ok(())
                         if settings.automatic
-                            && !settings.fracture
-                            && !settings.near_incompressible
+                            && !hints.fracture
+                            && !hints.near_incompressible
                             && per_entry > ITERATIVE_FROM_FLOPS_PER_ENTRY =>
                     {
                         eprintln!(

@@ -38,7 +38,7 @@ use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
-use crate::geometry::{norm, sub};
+use crate::vector::{norm, sub};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use rayon::prelude::*;
 

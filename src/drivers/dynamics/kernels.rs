@@ -382,9 +382,7 @@ impl PairKernel {
         let mut bond_weight = vec![0.0; bonds.len()];
         for i in 0..n {
             for b in bonds.owned_by(i) {
-                let j = bonds.neighbour[b] as usize;
-                bond_weight[b] =
-                    model.micromodulus[i] * p.volume[i] * p.volume[j] * bonds.volume_factor[b];
+                bond_weight[b] = model.bond_weight(&disc, i, b);
             }
         }
         // (row, other point, owned by the row's point?, bond), sorted.
@@ -416,7 +414,7 @@ impl PairKernel {
                 k += 1;
             }
             start[row as usize + 1] += 1;
-            let d = crate::geometry::sub(&p.x[other as usize], &p.x[row as usize]);
+            let d = crate::vector::sub(&p.x[other as usize], &p.x[row as usize]);
             pairs.push(Pair {
                 weight: 0.0,
                 length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),

@@ -266,7 +266,11 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
         }
         (ModelKind::BondBased, ForceKernel::Linearised) => {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-            Box::new(TangentKernel::new(disc, &model, scene.memory_limit_bytes)?)
+            Box::new(TangentKernel::new(
+                disc,
+                &model,
+                scene.solver.memory_limit_bytes,
+            )?)
         }
         (ModelKind::Shear, kernel) => {
             let model = Shear::new(
@@ -276,7 +280,11 @@ fn builds_kernel(scene: &Scene, disc: Discretization) -> Result<Box<dyn ForceFie
                 scene.gradient_dilatation,
             )?;
             if kernel == ForceKernel::Linearised {
-                Box::new(TangentKernel::new(disc, &model, scene.memory_limit_bytes)?)
+                Box::new(TangentKernel::new(
+                    disc,
+                    &model,
+                    scene.solver.memory_limit_bytes,
+                )?)
             } else {
                 Box::new(FamilyKernel::new(disc, model, false, criterion))
             }
@@ -309,7 +317,7 @@ fn tangent_row_sums(scene: &Scene, disc: &Discretization) -> Result<Vec<[f64; 3]
     Ok(match scene.model {
         ModelKind::BondBased => {
             let model = BondBased::new(disc, scene.dimension, &scene.materials, scene.thickness);
-            TangentKernel::new(copy, &model, scene.memory_limit_bytes)?.row_sums()
+            TangentKernel::new(copy, &model, scene.solver.memory_limit_bytes)?.row_sums()
         }
         ModelKind::Shear => {
             let model = Shear::new(
@@ -318,7 +326,7 @@ fn tangent_row_sums(scene: &Scene, disc: &Discretization) -> Result<Vec<[f64; 3]
                 &scene.materials,
                 scene.gradient_dilatation,
             )?;
-            TangentKernel::new(copy, &model, scene.memory_limit_bytes)?.row_sums()
+            TangentKernel::new(copy, &model, scene.solver.memory_limit_bytes)?.row_sums()
         }
     })
 }
@@ -338,9 +346,8 @@ fn stable_time_steps(
         for i in 0..n {
             for b in bonds.owned_by(i) {
                 let j = bonds.neighbour[b] as usize;
-                let len = crate::geometry::norm(&crate::geometry::sub(&p.x[j], &p.x[i]));
-                let w = model.micromodulus[i] * p.volume[i] * p.volume[j] * bonds.volume_factor[b]
-                    / len;
+                let len = crate::vector::norm(&crate::vector::sub(&p.x[j], &p.x[i]));
+                let w = model.bond_weight(disc, i, b) / len;
                 if traditional {
                     k[i] += 2.0 * w;
                 } else {
@@ -378,7 +385,7 @@ fn diverged_point(u: &[[f64; 3]], v: &[[f64; 3]], mass: &[f64]) -> usize {
     first_non_finite(u, v).unwrap_or_else(|| {
         (0..v.len())
             .max_by(|&a, &b| {
-                let e = |i: usize| mass[i] * crate::geometry::magnitude(&v[i]).powi(2);
+                let e = |i: usize| mass[i] * crate::vector::magnitude(&v[i]).powi(2);
                 e(a).total_cmp(&e(b))
             })
             .unwrap_or(0)
@@ -662,7 +669,7 @@ impl Verlet<'_> {
         f_int: &[[f64; 3]],
     ) -> Result<(), Error> {
         let dy = self.scene.dynamics.as_ref().expect("a dynamics scene");
-        let kinetic = |i: usize| 0.5 * self.mass[i] * crate::geometry::dot(&v[i], &v[i]);
+        let kinetic = |i: usize| 0.5 * self.mass[i] * crate::vector::dot(&v[i], &v[i]);
         let moving = (0..v.len()).find(|&i| !kinetic(i).is_finite());
         let total: f64 = (0..v.len()).map(kinetic).sum();
         let moving =
@@ -675,8 +682,8 @@ impl Verlet<'_> {
                 f_int.iter().flatten().any(|x| !x.is_finite()).then(|| {
                     (0..u.len())
                         .max_by(|&a, &b| {
-                            crate::geometry::magnitude(&u[a])
-                                .total_cmp(&crate::geometry::magnitude(&u[b]))
+                            crate::vector::magnitude(&u[a])
+                                .total_cmp(&crate::vector::magnitude(&u[b]))
                         })
                         .unwrap_or(0)
                 })
@@ -686,7 +693,7 @@ impl Verlet<'_> {
             (None, Some(i)) => (i, false),
             (None, None) => return Ok(()),
         };
-        if !velocity && crate::geometry::magnitude(&u[point]) == 0.0 {
+        if !velocity && crate::vector::magnitude(&u[point]) == 0.0 {
             // Forces that are not finite without any displacement: the
             // model's quantities at this scale leave double precision.
             let i = f_int
@@ -710,13 +717,13 @@ impl Verlet<'_> {
             format!(
                 "a velocity of {} m/s: its kinetic energy ½ m v² (the run's total: {total:.3e} J) \
                  is beyond double precision",
-                crate::error::num(crate::geometry::magnitude(&v[point]))
+                crate::error::num(crate::vector::magnitude(&v[point]))
             )
         } else {
             format!(
                 "a displacement of {} m: it or the internal forces it causes are beyond double \
                  precision",
-                crate::error::num(crate::geometry::magnitude(&u[point]))
+                crate::error::num(crate::vector::magnitude(&u[point]))
             )
         };
         // The entry that set the point: an initial condition, else a support.

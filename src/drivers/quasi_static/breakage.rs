@@ -143,8 +143,8 @@ impl<M: Model> Run<'_, M> {
                 let mut t = [[0.0f64; 3]; 3];
                 let mut any = false;
                 let mut add = |j: usize| {
-                    let e = crate::geometry::sub(&p.x[j], &p.x[i]);
-                    let len2 = crate::geometry::dot(&e, &e);
+                    let e = crate::vector::sub(&p.x[j], &p.x[i]);
+                    let len2 = crate::vector::dot(&e, &e);
                     for r in 0..3 {
                         for c in 0..3 {
                             t[r][c] += e[r] * e[c] / len2;

@@ -50,7 +50,7 @@
 //! (bond-based, [`crate::solve::low_rank`]) or iterates with the old factor
 //! as preconditioner (shear model, or when points were newly held).
 
-use super::static_solve::{reactions, right_hand_side, Prepared, Reaction, Timings};
+use super::static_solve::{reactions, right_hand_side, solver_hints, Prepared, Reaction, Timings};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::AppliedLoad;
 use crate::assembly::rigid_modes;
@@ -63,7 +63,7 @@ use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
 use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
 use crate::solve::low_rank::Term;
-use crate::solve::pipeline::{Pipeline, SolveReport, Solved, SolverSettings};
+use crate::solve::pipeline::{Pipeline, SolveReport, Solved};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -329,7 +329,8 @@ fn run_with<M: Model>(
         &disc,
         &dofs,
         model.coupling(),
-        SolverSettings::of(scene),
+        scene.solver,
+        solver_hints(scene),
         surrogate,
     )?;
     timings.pattern = pipeline.pattern_seconds;

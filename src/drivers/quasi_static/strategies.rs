@@ -206,7 +206,7 @@ impl<M: Model> Run<'_, M> {
     /// Raises the peak reaction to that of the current bonds at `load_factor`.
     fn note_peak(&mut self, load_factor: f64) {
         for r in &self.unit_reactions {
-            let f = load_factor * crate::geometry::magnitude(&r.force);
+            let f = load_factor * crate::vector::magnitude(&r.force);
             self.peak_reaction = self.peak_reaction.max(f);
         }
     }
@@ -249,7 +249,7 @@ impl<M: Model> Run<'_, M> {
         let largest = self
             .unit_reactions
             .iter()
-            .map(|r| load_factor * crate::geometry::magnitude(&r.force))
+            .map(|r| load_factor * crate::vector::magnitude(&r.force))
             .fold(0.0, f64::max);
         (self.peak_reaction > 0.0 && largest < fraction * self.peak_reaction)
             .then_some(Outcome::PastPeak { step })
@@ -260,7 +260,7 @@ impl<M: Model> Run<'_, M> {
         let largest = self
             .unit_reactions
             .iter()
-            .map(|r| crate::geometry::magnitude(&r.force))
+            .map(|r| crate::vector::magnitude(&r.force))
             .fold(0.0, f64::max);
         self.peak_reaction > 0.0
             && largest * self.settings.max_load_factor <= SEPARATED * self.peak_reaction
