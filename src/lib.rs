@@ -57,6 +57,7 @@ pub mod error;
 pub mod geometry;
 pub mod memory;
 pub mod model;
+pub mod notes;
 pub mod output;
 pub mod reference;
 pub mod scene;

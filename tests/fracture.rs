@@ -8,15 +8,19 @@ mod common;
 
 use common::scene;
 use dhpd::assembly::stiffness::{self, Stiffness};
+use dhpd::discretization::Discretization;
 use dhpd::drivers::quasi_static::{self, Observer, Outcome, Snapshot, StateKind, StepRecord};
 use dhpd::drivers::static_solve::{self, right_hand_side};
 use dhpd::error::Error;
 use dhpd::model::bond_based::BondBased;
 use dhpd::model::shear::Shear;
+use dhpd::model::Coupling;
 use dhpd::model::Model;
+use dhpd::notes::Notes;
 use dhpd::scene::Scene;
 use dhpd::solve::low_rank::Term;
 use dhpd::solve::pipeline::{Pipeline, Route};
+use dhpd::solve::Matrices;
 use dhpd::validation::fracture::Sent;
 
 /// Collects what a run shows, checking bonds and damage at every snapshot.
@@ -182,8 +186,21 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         let scene = case.scene();
         let prepared = static_solve::prepare(&scene).unwrap();
         let (mut disc, dofs, f_ext) = (prepared.disc, prepared.dofs, prepared.f_ext);
-        let (settings, hints) = (scene.solver, static_solve::solver_hints(&scene));
         let surrogate = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+        let mut notes = Notes::default();
+        // A pipeline for `disc` as the drivers build one.
+        let analyse = |disc: &Discretization, coupling: Coupling, notes: &mut Notes| {
+            let hints = static_solve::solver_hints(&scene, coupling);
+            let ((pattern, _), surrogate) =
+                static_solve::patterns(disc, &dofs, coupling, &scene.solver, hints).unwrap();
+            let layout = static_solve::layout(disc, &dofs);
+            Pipeline::analyse(pattern, surrogate, layout, scene.solver, hints, notes).unwrap()
+        };
+        let surrogate_values = |pipeline: &Pipeline, disc: &Discretization| {
+            pipeline
+                .surrogate_pattern()
+                .map(|p| Stiffness::assemble(&surrogate, disc, &dofs, p))
+        };
         // Bonds that cross the ligament right ahead of the notch tip.
         let ahead: Vec<usize> = (0..disc.points.len())
             .flat_map(|i| disc.bonds.owned_by(i).map(move |b| (i, b)))
@@ -197,27 +214,38 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         assert!(ahead.len() > 4);
         let (fresh, reused, iterations) = if model_kind == "bond_based" {
             let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-            let mut pipeline =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
+            let mut pipeline = analyse(&disc, model.coupling(), &mut notes);
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
+            let m = Matrices {
+                k: &k,
+                surrogate: None,
+            };
+            let layout = static_solve::layout(&disc, &dofs);
+            let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
             for &bond in &ahead[..4] {
                 disc.bonds.intact[bond] = false;
             }
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let mut other =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
-            let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
+            let layout = static_solve::layout(&disc, &dofs);
+            let m = Matrices {
+                k: &k,
+                surrogate: None,
+            };
+            let mut other = analyse(&disc, model.coupling(), &mut notes);
+            let fresh = other.solve(layout, m, &b, &mut notes).unwrap();
             // The exact low-rank update of the old factor (one term per broken bond).
-            let mut updated =
-                Pipeline::analyse(&disc, &dofs, model.coupling(), settings, hints, None).unwrap();
+            let mut updated = analyse(&disc, model.coupling(), &mut notes);
             let mut intact = disc.clone();
             intact.bonds.intact.iter_mut().for_each(|f| *f = true);
             let k0 = Stiffness::assemble(&model, &intact, &dofs, updated.pattern());
             let b0 = right_hand_side(&model, &intact, &dofs, &f_ext, 1.0);
-            updated.solve(&intact, &dofs, &k0, &b0).unwrap();
+            let m0 = Matrices {
+                k: &k0,
+                surrogate: None,
+            };
+            updated.solve(layout, m0, &b0, &mut notes).unwrap();
             let free = |i: usize, c: usize| dofs.free_index[3 * i + c] as usize;
             let terms = ahead[..4]
                 .iter()
@@ -235,7 +263,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 })
                 .collect();
             let update = updated
-                .resolve_update(&disc, &dofs, &k, &b, &x0, terms)
+                .resolve_update(layout, m, &b, &x0, terms, &mut notes)
                 .unwrap();
             assert_eq!(update.report.route, Route::Update);
             let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();
@@ -246,23 +274,21 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 "the low-rank update differs by {relative:e}"
             );
             println!("bond_based: low-rank update after 4 broken bonds: difference {relative:.1e}");
-            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
+            let reused = pipeline.resolve(layout, m, &b, &x0, &mut notes).unwrap();
             assert_eq!(reused.report.route, Route::Reuse);
             (fresh.x, reused.x, reused.report.iterations)
         } else {
             let mut model = Shear::new(&disc, scene.dimension, &scene.materials, false).unwrap();
-            let mut pipeline = Pipeline::analyse(
-                &disc,
-                &dofs,
-                model.coupling(),
-                settings,
-                hints,
-                Some(surrogate.clone()),
-            )
-            .unwrap();
+            let mut pipeline = analyse(&disc, model.coupling(), &mut notes);
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let x0 = pipeline.solve(&disc, &dofs, &k, &b).unwrap().x;
+            let s0 = surrogate_values(&pipeline, &disc);
+            let m = Matrices {
+                k: &k,
+                surrogate: s0.as_ref(),
+            };
+            let layout = static_solve::layout(&disc, &dofs);
+            let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
             let mut owners = Vec::new();
             for &bond in &ahead[..4] {
                 disc.bonds.intact[bond] = false;
@@ -271,18 +297,21 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             assert!(model.refresh_owners(&disc, &owners).is_empty());
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let reused = pipeline.resolve(&disc, &dofs, &k, &b, &x0).unwrap();
+            let layout = static_solve::layout(&disc, &dofs);
+            let s1 = surrogate_values(&pipeline, &disc);
+            let m = Matrices {
+                k: &k,
+                surrogate: s1.as_ref(),
+            };
+            let reused = pipeline.resolve(layout, m, &b, &x0, &mut notes).unwrap();
             assert_eq!(reused.report.route, Route::Reuse);
-            let mut other = Pipeline::analyse(
-                &disc,
-                &dofs,
-                model.coupling(),
-                settings,
-                hints,
-                Some(surrogate),
-            )
-            .unwrap();
-            let fresh = other.solve(&disc, &dofs, &k, &b).unwrap();
+            let mut other = analyse(&disc, model.coupling(), &mut notes);
+            let s2 = surrogate_values(&other, &disc);
+            let m = Matrices {
+                k: &k,
+                surrogate: s2.as_ref(),
+            };
+            let fresh = other.solve(layout, m, &b, &mut notes).unwrap();
             (fresh.x, reused.x, reused.report.iterations)
         };
         let norm = |v: &[f64]| v.iter().map(|a| a * a).sum::<f64>().sqrt();

@@ -36,18 +36,17 @@ pub fn internal_forces<M: Model>(
 }
 
 /// Internal force on each of `points` only, for displacements `u`: the forces
-/// of the bonds owned by those points and of the bonds ending at them
-/// (`incoming(q)`: the `(owner, bond)` pairs of the bonds ending at `q`). Costs
+/// of the bonds owned by those points and of the bonds ending at them. Costs
 /// the families of those owners, each computed once, not the whole body.
-pub fn internal_forces_on<'a, M: Model>(
+pub fn internal_forces_on<M: Model>(
     model: &M,
     disc: &Discretization,
     u: &[[f64; 3]],
     linear: bool,
     points: &[usize],
-    incoming: impl Fn(usize) -> &'a [(u32, u32)],
 ) -> Vec<[f64; 3]> {
     let bonds = &disc.bonds;
+    let incoming = |q: usize| bonds.incoming(q);
     let mut owners: Vec<usize> = points.to_vec();
     for &q in points {
         owners.extend(incoming(q).iter().map(|&(o, _)| o as usize));

@@ -2,8 +2,8 @@
 //!
 //! At point level, column `q` holds the row points that any owner's tangent
 //! couples to `q`. Owners that touch `q` are `q` itself and the owners of the
-//! bonds that end at `q` (its dual horizon): the pattern therefore keeps, per
-//! point, the list of those incoming bonds (the transpose of the bond CSR).
+//! bonds that end at `q` (its dual horizon,
+//! [`crate::discretization::Bonds::incoming`]).
 //! - Star coupling (bond-based): rows(q) = {q} ∪ H_q ∪ H'_q.
 //! - Family coupling (state-based): rows(q) = ∪_{o ∈ {q} ∪ H'_q} ({o} ∪ H_o).
 //!
@@ -28,17 +28,13 @@ const BYTES_PER_POINT_ENTRY: f64 = 8.0;
 /// Bytes per matrix entry: its row index here and its value in the stiffness.
 const BYTES_PER_DOF_ENTRY: f64 = 16.0;
 
-/// Point-level pattern plus the incoming-bond index used for column filling.
+/// The pattern at point level and at degree-of-freedom level.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Pattern {
     /// `row_offsets[q]..row_offsets[q+1]` index `row_points` for column point q.
     pub row_offsets: Vec<usize>,
     /// Sorted row points of each column point.
     pub row_points: Vec<u32>,
-    /// `in_offsets[q]..in_offsets[q+1]` index `in_bonds` for point q.
-    pub in_offsets: Vec<usize>,
-    /// `(owner, bond)` of every bond whose neighbour is q.
-    pub in_bonds: Vec<(u32, u32)>,
     /// Degree-of-freedom CSC column pointers over the free unknowns.
     pub col_ptr: Vec<usize>,
     /// Degree-of-freedom CSC row indices.
@@ -50,12 +46,6 @@ impl Pattern {
     #[inline]
     pub fn rows(&self, q: usize) -> &[u32] {
         &self.row_points[self.row_offsets[q]..self.row_offsets[q + 1]]
-    }
-
-    /// The `(owner, bond)` pairs of the bonds ending at `q`.
-    #[inline]
-    pub fn incoming(&self, q: usize) -> &[(u32, u32)] {
-        &self.in_bonds[self.in_offsets[q]..self.in_offsets[q + 1]]
     }
 
     /// Number of stored entries of `K`.
@@ -86,23 +76,6 @@ impl Pattern {
     ) -> Result<Self, NumericalError> {
         let n = disc.points.len();
         let bonds = &disc.bonds;
-        // Transpose of the bond CSR (all bonds, intact or not: slots are kept).
-        let mut in_offsets = vec![0usize; n + 1];
-        for &j in &bonds.neighbour {
-            in_offsets[j as usize + 1] += 1;
-        }
-        for q in 0..n {
-            in_offsets[q + 1] += in_offsets[q];
-        }
-        let mut fill = in_offsets.clone();
-        let mut in_bonds = vec![(0u32, 0u32); bonds.len()];
-        for o in 0..n {
-            for b in bonds.owned_by(o) {
-                let j = bonds.neighbour[b] as usize;
-                in_bonds[fill[j]] = (o as u32, b as u32);
-                fill[j] += 1;
-            }
-        }
         let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
         let bytes_per_entry =
             BYTES_PER_POINT_ENTRY + (dofs.d * dofs.d) as f64 * BYTES_PER_DOF_ENTRY;
@@ -132,7 +105,7 @@ impl Pattern {
             .map_init(
                 || vec![false; n],
                 |seen, q| {
-                    let incoming = &in_bonds[in_offsets[q]..in_offsets[q + 1]];
+                    let incoming = bonds.incoming(q);
                     let mut r: Vec<u32> = Vec::new();
                     let mut push = |p: u32| {
                         if !seen[p as usize] {
@@ -204,8 +177,6 @@ impl Pattern {
         Ok(Pattern {
             row_offsets,
             row_points,
-            in_offsets,
-            in_bonds,
             col_ptr,
             row_idx,
         })

@@ -2,7 +2,7 @@
 //!
 //! Column point `q` gathers the blocks `K[p][q]` from every owner that touches
 //! it (`q` itself, [`Column::Owner`], and the owners of the bonds ending at `q`,
-//! [`Column::Neighbour`]); its columns are a contiguous slice of the value array,
+//! [`Column::Neighbour`], from the bonds' transpose); its columns are a contiguous slice of the value array,
 //! so threads never write to the same memory.
 
 use super::dofs::{DofMap, PRESCRIBED};
@@ -90,6 +90,50 @@ impl Stiffness {
                     }
                 }
             });
+    }
+
+    /// A point whose stiffness left the floating-point range, with the value:
+    /// a non-finite entry, or a point with intact bonds none of whose free
+    /// components has a normal diagonal entry (the sum of its bonds' positive
+    /// stiffnesses underflowed; a mechanism leaves some component positive).
+    /// Every input passed its checks, so this is a scale at which the model's
+    /// own quantities leave double precision. `columns` (by point) restricts
+    /// the search to the point columns refilled since the last check.
+    pub fn out_of_range(
+        &self,
+        pattern: &Pattern,
+        dofs: &DofMap,
+        disc: &Discretization,
+        columns: Option<&[bool]>,
+    ) -> Option<(usize, f64)> {
+        let column = |c: usize| pattern.col_ptr[c]..pattern.col_ptr[c + 1];
+        let point = |c: usize| dofs.free_dofs[c].0 as usize;
+        let in_scope = |c: usize| columns.is_none_or(|cols| cols[point(c)]);
+        if let Some((c, v)) = (0..self.n).filter(|&c| in_scope(c)).find_map(|c| {
+            let v = self.values[column(c)].iter().find(|v| !v.is_finite())?;
+            Some((c, *v))
+        }) {
+            return Some((point(c), v));
+        }
+        let diagonal = |c: usize| column(c).find(|&p| pattern.row_idx[p] == c);
+        let mut normal = vec![false; disc.points.len()];
+        for c in (0..self.n).filter(|&c| in_scope(c)) {
+            if diagonal(c).is_some_and(|p| self.values[p].is_normal()) {
+                normal[point(c)] = true;
+            }
+        }
+        let suspects: Vec<usize> = (0..self.n)
+            .filter(|&c| in_scope(c))
+            .map(point)
+            .filter(|&i| !normal[i])
+            .collect();
+        if suspects.is_empty() {
+            return None;
+        }
+        let touches = disc.bonds.touch_counts(disc.points.len());
+        let point_out = suspects.into_iter().find(|&i| touches[i] > 0)?;
+        let c = (0..self.n).find(|&c| point(c) == point_out)?;
+        Some((point_out, diagonal(c).map_or(0.0, |p| self.values[p])))
     }
 
     /// `(K + Kᵀ)/2` on the same pattern.
@@ -260,7 +304,7 @@ pub fn fill_columns<M: Model>(
                     }
                 };
                 model.tangent_column(disc, q, Column::Owner, &mut add);
-                for &(owner, bond) in pattern.incoming(q) {
+                for &(owner, bond) in disc.bonds.incoming(q) {
                     model.tangent_column(
                         disc,
                         owner as usize,
@@ -296,8 +340,6 @@ mod tests {
         let pattern = Pattern {
             row_offsets: Vec::new(),
             row_points: Vec::new(),
-            in_offsets: Vec::new(),
-            in_bonds: Vec::new(),
             col_ptr: vec![0, 1],
             row_idx: vec![0],
         };

@@ -82,6 +82,11 @@ pub struct Bonds {
     pub volume_factor: Vec<f64>,
     /// Intact flag (bonds never heal).
     pub intact: Vec<bool>,
+    /// `in_offsets[q]..in_offsets[q+1]` index `in_bonds` for point `q`: the
+    /// transpose of the CSR, built once ([`Bonds::incoming`]).
+    pub in_offsets: Vec<usize>,
+    /// `(owner, bond)` of every bond whose neighbour is `q`, by owner.
+    pub in_bonds: Vec<(u32, u32)>,
 }
 
 impl Bonds {
@@ -89,6 +94,36 @@ impl Bonds {
     #[inline]
     pub fn owned_by(&self, i: usize) -> Range<usize> {
         self.offsets[i]..self.offsets[i + 1]
+    }
+
+    /// The `(owner, bond)` pairs of the bonds ending at `q` (its dual horizon),
+    /// by owner; intact or not.
+    #[inline]
+    pub fn incoming(&self, q: usize) -> &[(u32, u32)] {
+        &self.in_bonds[self.in_offsets[q]..self.in_offsets[q + 1]]
+    }
+
+    /// Builds the transpose of the bond CSR for `n` points ([`Bonds::incoming`]).
+    fn with_transpose(mut self, n: usize) -> Self {
+        let mut in_offsets = vec![0usize; n + 1];
+        for &j in &self.neighbour {
+            in_offsets[j as usize + 1] += 1;
+        }
+        for q in 0..n {
+            in_offsets[q + 1] += in_offsets[q];
+        }
+        let mut fill = in_offsets.clone();
+        let mut in_bonds = vec![(0u32, 0u32); self.len()];
+        for o in 0..n {
+            for b in self.owned_by(o) {
+                let j = self.neighbour[b] as usize;
+                in_bonds[fill[j]] = (o as u32, b as u32);
+                fill[j] += 1;
+            }
+        }
+        self.in_offsets = in_offsets;
+        self.in_bonds = in_bonds;
+        self
     }
 
     /// Total number of bonds.
@@ -294,8 +329,8 @@ pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error>
             return Ok(Discretization {
                 d,
                 groups: groups::resolve(&mesh_groups, &raw),
+                bonds: bonds.with_transpose(points.len()),
                 points,
-                bonds,
                 removed_isolated,
             });
         }

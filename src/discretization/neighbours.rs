@@ -74,6 +74,8 @@ pub fn find_bonds(
         intact: vec![true; total],
         neighbour,
         volume_factor,
+        in_offsets: Vec::new(),
+        in_bonds: Vec::new(),
     })
 }
 

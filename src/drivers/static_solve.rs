@@ -12,10 +12,15 @@ use crate::discretization::{self, Discretization};
 use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
+use crate::model::Coupling;
 use crate::model::Model;
+use crate::notes::Notes;
+use crate::scene::SolverSettings;
 use crate::scene::{Dimension, ModelKind, Scene};
-use crate::solve::pipeline::{Hints, Pipeline};
-use crate::solve::PivotStats;
+use crate::solve::cholesky::PivotStats;
+use crate::solve::pipeline::Pipeline;
+use crate::solve::route::{self, Hints};
+use crate::solve::{Layout, Matrices};
 use serde::Serialize;
 use std::time::Instant;
 
@@ -57,7 +62,7 @@ pub struct Counts {
     /// for the iterative route).
     pub nnz_l: Option<usize>,
     /// The factor's fill-reducing ordering and the sizes of those analysed.
-    pub ordering: Option<crate::solve::pipeline::OrderingReport>,
+    pub ordering: Option<crate::solve::route::OrderingReport>,
     /// Pivot range of the Cholesky factor (None for LU).
     pub pivots: Option<PivotStats>,
     /// `‖K − Kᵀ‖_F / ‖K‖_F` (round-off for the bond-based model).
@@ -215,11 +220,12 @@ fn warn_near_incompressible(scene: &Scene) {
     }
 }
 
-/// What the solver should know about `scene` besides its matrix: a fracture
-/// run, or a shear-model body with a nearly incompressible material
-/// ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]).
-pub fn solver_hints(scene: &Scene) -> Hints {
+/// What the solver should know about `scene` besides its matrix: a symmetric
+/// `K` (a star coupling), a fracture run, or a shear-model body with a nearly
+/// incompressible material ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]).
+pub fn solver_hints(scene: &Scene, coupling: Coupling) -> Hints {
     Hints {
+        symmetric: coupling == Coupling::Star,
         fracture: scene.quasi_static.is_some(),
         near_incompressible: scene.model == ModelKind::Shear
             && scene
@@ -227,6 +233,60 @@ pub fn solver_hints(scene: &Scene) -> Hints {
                 .iter()
                 .any(|m| m.poisson_ratio >= crate::model::shear::NEAR_INCOMPRESSIBLE),
     }
+}
+
+/// The patterns of `K` and, when the route asks for one, of the bond-based
+/// surrogate, with the time they took; a route that cannot take this many
+/// unknowns is refused first.
+pub fn patterns(
+    disc: &Discretization,
+    dofs: &DofMap,
+    coupling: Coupling,
+    settings: &SolverSettings,
+    hints: Hints,
+) -> Result<((Pattern, f64), Option<Pattern>), Error> {
+    route::check_size(settings, dofs.n_free())?;
+    let t = Instant::now();
+    let limit = settings.memory_limit_bytes;
+    let pattern = Pattern::new(disc, dofs, coupling, limit)?;
+    let surrogate = route::wants_surrogate(settings, hints)
+        .then(|| Pattern::new(disc, dofs, Coupling::Star, limit))
+        .transpose()?;
+    Ok(((pattern, t.elapsed().as_secs_f64()), surrogate))
+}
+
+/// What the solver knows of the body.
+pub fn layout<'a>(disc: &'a Discretization, dofs: &'a DofMap) -> Layout<'a> {
+    Layout {
+        x: &disc.points.x,
+        spacing: &disc.points.spacing,
+        dofs,
+    }
+}
+
+/// Refuses a stiffness that left the floating-point range
+/// ([`Stiffness::out_of_range`]), naming the point's source.
+pub fn check_range(
+    k: &Stiffness,
+    pattern: &Pattern,
+    dofs: &DofMap,
+    disc: &Discretization,
+    columns: Option<&[bool]>,
+) -> Result<(), Error> {
+    match k.out_of_range(pattern, dofs, disc, columns) {
+        Some((point, value)) => {
+            Err(
+                discretization::beyond_double_precision(disc, point, "a stiffness entry", value)
+                    .into(),
+            )
+        }
+        None => Ok(()),
+    }
+}
+
+/// Prints the notes so far on stderr.
+pub fn print_notes(notes: &mut Notes) {
+    notes.take().iter().for_each(|n| eprintln!("{n}"));
 }
 
 /// Discretises and solves the static problem of `scene`.
@@ -250,26 +310,32 @@ pub fn solve_with<M: Model>(
 
     // The symbolic analysis needs only the pattern: it runs before any value is
     // assembled, so a factor too large for memory is refused early.
-    let mut pipeline = Pipeline::analyse(
-        &disc,
-        &dofs,
-        model.coupling(),
+    let mut notes = Notes::default();
+    let hints = solver_hints(scene, model.coupling());
+    let (pattern, surrogate) = patterns(&disc, &dofs, model.coupling(), &scene.solver, hints)?;
+    timings.pattern = pattern.1;
+    let layout = layout(&disc, &dofs);
+    let analysed = Pipeline::analyse(
+        pattern.0,
+        surrogate,
+        layout,
         scene.solver,
-        solver_hints(scene),
-        Some(BondBased::new(
-            &disc,
-            scene.dimension,
-            &scene.materials,
-            scene.thickness,
-        )),
-    )?;
-    timings.pattern = pipeline.pattern_seconds;
+        hints,
+        &mut notes,
+    );
+    print_notes(&mut notes);
+    let mut pipeline = analysed?;
     timings.symbolic_factorization = pipeline.symbolic_seconds;
 
     let t = Instant::now();
     let stiffness = Stiffness::assemble(model, &disc, &dofs, pipeline.pattern());
     let rhs = right_hand_side(model, &disc, &dofs, &f_ext, 1.0);
+    let surrogate = pipeline.surrogate_pattern().map(|p| {
+        let bond_based = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+        Stiffness::assemble(&bond_based, &disc, &dofs, p)
+    });
     timings.assembly = t.elapsed().as_secs_f64();
+    check_range(&stiffness, pipeline.pattern(), &dofs, &disc, None)?;
 
     let asymmetry = pipeline.asymmetry(&stiffness);
     // The model's residual, from the bond forces (pipeline::solve_with_residual).
@@ -280,7 +346,13 @@ pub fn solve_with<M: Model>(
             .map(|&(i, c)| f_ext[i as usize][c as usize] + f_int[i as usize][c as usize])
             .collect()
     };
-    let solved = pipeline.solve_with_residual(&disc, &dofs, &stiffness, &rhs, &model_residual)?;
+    let matrices = Matrices {
+        k: &stiffness,
+        surrogate: surrogate.as_ref(),
+    };
+    let solved = pipeline.solve_with_residual(layout, matrices, &rhs, &model_residual, &mut notes);
+    print_notes(&mut notes);
+    let solved = solved?;
     let report = &solved.report;
     timings.numeric_factorization = report.factor_seconds;
     if report.refinement_steps > 0 {
@@ -291,7 +363,7 @@ pub fn solve_with<M: Model>(
     }
     let t = Instant::now();
     let u = dofs.expand(&solved.x);
-    let reactions = reactions(model, &disc, &dofs, pipeline.pattern(), &f_ext, &u, 1.0);
+    let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
     timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
     let stress = scene.output.stress.then(|| {
         use rayon::prelude::*;
@@ -372,12 +444,11 @@ pub fn right_hand_side<M: Model>(
 /// exert on the body, `−Σ (F_int + f_ext)` over the prescribed components the
 /// set owns (formulation Sec. 7; overlapping sets: [`crate::assembly::dofs::ConstrainedSet`]), so the
 /// reactions of all sets sum to the total support force. Only the
-/// bonds touching the sets are evaluated (`pattern` holds the incoming bonds).
+/// bonds touching the sets are evaluated.
 pub fn reactions<M: Model>(
     model: &M,
     disc: &Discretization,
     dofs: &DofMap,
-    pattern: &Pattern,
     f_ext: &[[f64; 3]],
     u: &[[f64; 3]],
     load_factor: f64,
@@ -385,8 +456,7 @@ pub fn reactions<M: Model>(
     dofs.sets
         .iter()
         .map(|set| {
-            let f_int =
-                internal_forces_on(model, disc, u, true, &set.points, |q| pattern.incoming(q));
+            let f_int = internal_forces_on(model, disc, u, true, &set.points);
             // Only the components this set owns (the first set to prescribe a
             // component counts its reaction: `ConstrainedSet`).
             let mut force = [0.0; 3];

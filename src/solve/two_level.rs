@@ -33,10 +33,10 @@
 //! at every size for a fixed `δ/Δx`, so the iteration count does not grow with
 //! the number of points (measured in `validation/solver/README.md`).
 
-use super::{Cholesky, FactorError};
-use crate::assembly::dofs::{DofMap, PRESCRIBED};
+use super::cholesky::{Cholesky, FactorError};
+use super::Layout;
+use crate::assembly::dofs::PRESCRIBED;
 use crate::assembly::pattern::Pattern;
-use crate::discretization::Discretization;
 use crate::error::NumericalError;
 use crate::vector::{norm, sub};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
@@ -80,13 +80,13 @@ impl TwoLevel {
     /// Builds the aggregates, `P`, the coarse factor and the smoother bounds for
     /// `K` (`values` on `pattern`; `product` is `v ↦ K v`).
     pub fn new(
-        disc: &Discretization,
-        dofs: &DofMap,
+        layout: Layout,
         pattern: &Pattern,
         values: &[f64],
         product: &dyn Fn(&[f64]) -> Vec<f64>,
     ) -> Result<Self, NumericalError> {
-        let point_aggregate = aggregate_points(disc, pattern);
+        let dofs = layout.dofs;
+        let point_aggregate = aggregate_points(layout, pattern);
         let n_aggregates = point_aggregate.iter().max().map_or(0, |&a| a as usize + 1);
         let n = dofs.n_free();
         let aggregate: Vec<u32> = dofs
@@ -95,8 +95,7 @@ impl TwoLevel {
             .map(|&(p, _)| point_aggregate[p as usize])
             .collect();
         let (members_offsets, members) = group(&aggregate, n_aggregates);
-        let (rows, coarse_offsets) =
-            rigid_modes(disc, dofs, &aggregate, &members_offsets, &members);
+        let (rows, coarse_offsets) = rigid_modes(layout, &aggregate, &members_offsets, &members);
         let (col_ptr, row_idx, coarse_values) = coarse_matrix(
             pattern,
             values,
@@ -246,16 +245,16 @@ impl TwoLevel {
 
 /// Greedy aggregation of the points (module docs); points without a free
 /// unknown are aggregated too (they contribute no row of `P`).
-fn aggregate_points(disc: &Discretization, pattern: &Pattern) -> Vec<u32> {
-    let p = &disc.points;
-    let n = p.len();
+fn aggregate_points(layout: Layout, pattern: &Pattern) -> Vec<u32> {
+    let x = layout.x;
+    let n = x.len();
     let near = |q: usize| {
-        let reach = AGGREGATE_REACH * p.spacing[q];
+        let reach = AGGREGATE_REACH * layout.spacing[q];
         pattern
             .rows(q)
             .iter()
             .map(|&r| r as usize)
-            .filter(move |&r| r != q && norm(&sub(&p.x[r], &p.x[q])) <= reach)
+            .filter(move |&r| r != q && norm(&sub(&x[r], &x[q])) <= reach)
     };
     let mut aggregate = vec![NONE; n];
     let mut count = 0u32;
@@ -272,8 +271,8 @@ fn aggregate_points(disc: &Discretization, pattern: &Pattern) -> Vec<u32> {
             let joined = near(q)
                 .filter(|&r| seeded[r] != NONE)
                 .min_by(|&a, &b| {
-                    let da = norm(&sub(&p.x[a], &p.x[q]));
-                    let db = norm(&sub(&p.x[b], &p.x[q]));
+                    let da = norm(&sub(&x[a], &x[q]));
+                    let db = norm(&sub(&x[b], &x[q]));
                     da.total_cmp(&db)
                 })
                 .map(|r| seeded[r]);
@@ -312,13 +311,12 @@ fn group(aggregate: &[u32], n_aggregates: usize) -> (Vec<usize>, Vec<u32>) {
 /// Orthonormalised rigid motions of each aggregate at its free unknowns: the
 /// rows of `P` and the coarse offsets.
 fn rigid_modes(
-    disc: &Discretization,
-    dofs: &DofMap,
+    layout: Layout,
     aggregate: &[u32],
     members_offsets: &[usize],
     members: &[u32],
 ) -> (Vec<[f64; MAX_MODES]>, Vec<usize>) {
-    let d = disc.d;
+    let (d, dofs) = (layout.d(), layout.dofs);
     let n_aggregates = members_offsets.len() - 1;
     let candidates = match d {
         1 => 1,
@@ -330,8 +328,8 @@ fn rigid_modes(
         .map(|a| {
             let dofs_a = &members[members_offsets[a]..members_offsets[a + 1]];
             let position = |dof: u32| {
-                let (point, c) = dofs.free_dofs[dof as usize];
-                (disc.points.x[point as usize], c as usize)
+                let (point, c) = layout.unknown(dof as usize);
+                (layout.x[point], c)
             };
             let mut centroid = [0.0; 3];
             for &dof in dofs_a {

@@ -640,9 +640,6 @@ pub struct FamilyKernel<M: Model> {
     model: M,
     linear: bool,
     bond_force: Vec<[f64; 3]>,
-    /// Bonds ending at each point (CSR).
-    incoming_start: Vec<usize>,
-    incoming: Vec<u32>,
     criterion: Option<Criterion>,
     ratios: Vec<f64>,
 }
@@ -650,29 +647,13 @@ pub struct FamilyKernel<M: Model> {
 impl<M: Model> FamilyKernel<M> {
     /// Prepares the buffers; `linear` selects the linearised kernel.
     pub fn new(disc: Discretization, model: M, linear: bool, criterion: Option<Criterion>) -> Self {
-        let n = disc.points.len();
         let bonds = &disc.bonds;
-        let mut incoming_start = vec![0usize; n + 1];
-        for &j in &bonds.neighbour {
-            incoming_start[j as usize + 1] += 1;
-        }
-        for i in 0..n {
-            incoming_start[i + 1] += incoming_start[i];
-        }
-        let mut fill = incoming_start.clone();
-        let mut incoming = vec![0u32; bonds.len()];
-        for (b, &j) in bonds.neighbour.iter().enumerate() {
-            incoming[fill[j as usize]] = b as u32;
-            fill[j as usize] += 1;
-        }
         let m = bonds.len();
         FamilyKernel {
             disc,
             model,
             linear,
             bond_force: vec![[0.0; 3]; m],
-            incoming_start,
-            incoming,
             ratios: if criterion.is_some() {
                 vec![0.0; m]
             } else {
@@ -724,17 +705,16 @@ impl<M: Model> ForceField for FamilyKernel<M> {
             .into_par_iter()
             .enumerate()
             .for_each(|(i, f)| model.owner_forces(disc, i, u, linear, f));
-        let (bond_force, offsets) = (&self.bond_force, &disc.bonds.offsets);
-        let (start, incoming) = (&self.incoming_start, &self.incoming);
+        let (bond_force, bonds) = (&self.bond_force, &disc.bonds);
         out.par_iter_mut()
             .enumerate()
             .with_min_len(64)
             .for_each(|(i, f)| {
                 let mut acc = [0.0; 3];
-                for bf in &bond_force[offsets[i]..offsets[i + 1]] {
+                for bf in &bond_force[bonds.owned_by(i)] {
                     (0..3).for_each(|c| acc[c] += bf[c]);
                 }
-                for &b in &incoming[start[i]..start[i + 1]] {
+                for &(_, b) in bonds.incoming(i) {
                     let bf = &bond_force[b as usize];
                     (0..3).for_each(|c| acc[c] -= bf[c]);
                 }

@@ -61,8 +61,8 @@ impl<M: Model> Run<'_, M> {
     pub(super) fn release(&mut self, point: usize) -> usize {
         let mut touching: Vec<usize> = self.disc.bonds.owned_by(point).collect();
         touching.extend(
-            self.pipeline
-                .pattern()
+            self.disc
+                .bonds
                 .incoming(point)
                 .iter()
                 .map(|&(_, b)| b as usize),
@@ -122,9 +122,7 @@ impl<M: Model> Run<'_, M> {
     pub(super) fn has_bond(&self, i: usize) -> bool {
         let bonds = &self.disc.bonds;
         bonds.owned_by(i).any(|b| bonds.intact[b])
-            || self
-                .pipeline
-                .pattern()
+            || bonds
                 .incoming(i)
                 .iter()
                 .any(|&(_, b)| bonds.intact[b as usize])
@@ -135,7 +133,6 @@ impl<M: Model> Run<'_, M> {
         let d = self.disc.d;
         let p = &self.disc.points;
         let bonds = &self.disc.bonds;
-        let pattern = self.pipeline.pattern();
         candidates
             .iter()
             .copied()
@@ -155,7 +152,7 @@ impl<M: Model> Run<'_, M> {
                 for b in bonds.owned_by(i).filter(|&b| bonds.intact[b]) {
                     add(bonds.neighbour[b] as usize);
                 }
-                for &(o, b) in pattern.incoming(i) {
+                for &(o, b) in bonds.incoming(i) {
                     if bonds.intact[b as usize] {
                         add(o as usize);
                     }

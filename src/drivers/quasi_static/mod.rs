@@ -50,7 +50,10 @@
 //! (bond-based, [`crate::solve::low_rank`]) or iterates with the old factor
 //! as preconditioner (shear model, or when points were newly held).
 
-use super::static_solve::{reactions, right_hand_side, solver_hints, Prepared, Reaction, Timings};
+use super::static_solve::{
+    check_range, layout, patterns, print_notes, reactions, right_hand_side, solver_hints, Prepared,
+    Reaction, Timings,
+};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::AppliedLoad;
 use crate::assembly::rigid_modes;
@@ -61,9 +64,11 @@ use crate::error::{Error, NumericalError};
 use crate::model::bond_based::BondBased;
 use crate::model::shear::Shear;
 use crate::model::{Coupling, Model};
+use crate::notes::Notes;
 use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
 use crate::solve::low_rank::Term;
 use crate::solve::pipeline::{Pipeline, SolveReport, Solved};
+use crate::solve::Matrices;
 use serde::Serialize;
 use std::time::Instant;
 
@@ -281,6 +286,11 @@ struct Run<'s, M: Model> {
     criterion: Criterion,
     pipeline: Pipeline,
     stiffness: Stiffness,
+    /// The bond-based surrogate and its values, while the solver route
+    /// factorises one (kept up to date as bonds break, pinned like `K`).
+    surrogate: Option<(BondBased, Stiffness)>,
+    /// Notes of the solves not yet handed on.
+    notes: Notes,
     /// Free unknowns at λ = 1 for the current bonds.
     x: Vec<f64>,
     /// Reactions at λ = 1 for the current bonds.
@@ -323,20 +333,28 @@ fn run_with<M: Model>(
         loads,
         mut timings,
     } = prepared;
-    let surrogate = (model.coupling() == Coupling::Family)
-        .then(|| BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness));
-    let pipeline = Pipeline::analyse(
-        &disc,
-        &dofs,
-        model.coupling(),
-        scene.solver,
-        solver_hints(scene),
+    let hints = solver_hints(scene, model.coupling());
+    let (pattern, surrogate) = patterns(&disc, &dofs, model.coupling(), &scene.solver, hints)?;
+    timings.pattern = pattern.1;
+    let mut notes = Notes::default();
+    let analysed = Pipeline::analyse(
+        pattern.0,
         surrogate,
-    )?;
-    timings.pattern = pipeline.pattern_seconds;
+        layout(&disc, &dofs),
+        scene.solver,
+        hints,
+        &mut notes,
+    );
+    print_notes(&mut notes);
+    let pipeline = analysed?;
     timings.symbolic_factorization = pipeline.symbolic_seconds;
     let t = Instant::now();
     let stiffness = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
+    let surrogate = pipeline.surrogate_pattern().map(|p| {
+        let bond_based = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+        let values = Stiffness::assemble(&bond_based, &disc, &dofs, p);
+        (bond_based, values)
+    });
     let diagonal = mean_diagonal(&stiffness, pipeline.pattern());
     let (criterion, calibration) = Criterion::with_report(scene, &disc);
     timings.assembly = t.elapsed().as_secs_f64();
@@ -357,6 +375,8 @@ fn run_with<M: Model>(
         criterion,
         pipeline,
         stiffness,
+        surrogate,
+        notes,
         x: Vec::new(),
         unit_reactions: Vec::new(),
         held: vec![None; n_points],

@@ -98,23 +98,32 @@ impl<M: Model> Run<'_, M> {
         Some(columns)
     }
 
-    /// Assembles `K` and `b` for the current bonds (held unknowns pinned) and
-    /// solves at λ = 1: afresh for the first solve, else reusing the factor.
-    /// Only the columns of `K` that bonds broken since the last solve touch are
-    /// refilled, and `b` only when those include a prescribed point.
-    pub(super) fn solve(&mut self, step: usize, first: bool) -> Result<(), Error> {
-        let terms = if first { None } else { self.low_rank_terms() };
-        let columns = self.changed_columns(first);
+    /// Refills the point `columns` of `K` (and of the surrogate) that changed
+    /// (`None`: all), pins the held unknowns, checks the refilled columns'
+    /// range and returns the right-hand side at λ = 1 (held unknowns at zero).
+    fn refill(&mut self, columns: Option<&[bool]>) -> Result<Vec<f64>, Error> {
+        let pattern = self.pipeline.pattern();
         stiffness::fill_columns(
             &self.model,
             &self.disc,
             &self.dofs,
-            self.pipeline.pattern(),
+            pattern,
             &mut self.stiffness.values,
-            columns.as_deref(),
+            columns,
         );
+        match (&mut self.surrogate, self.pipeline.surrogate_pattern()) {
+            (Some((model, values)), Some(p)) => stiffness::fill_columns(
+                model,
+                &self.disc,
+                &self.dofs,
+                p,
+                &mut values.values,
+                columns,
+            ),
+            // The route no longer factorises a surrogate.
+            (surrogate, _) => *surrogate = None,
+        }
         let prescribed_changed = columns
-            .as_ref()
             .is_none_or(|c| (0..c.len()).any(|i| c[i] && self.dofs.free_count(i) < self.disc.d));
         if prescribed_changed {
             self.rhs = right_hand_side(&self.model, &self.disc, &self.dofs, &self.f_ext, 1.0);
@@ -127,53 +136,57 @@ impl<M: Model> Run<'_, M> {
             .map(|&(i, _)| self.held[i as usize].is_some())
             .collect();
         if pinned.iter().any(|&p| p) {
-            let dof_columns: Option<Vec<bool>> = columns.as_ref().map(|c| {
+            let dof_columns: Option<Vec<bool>> = columns.map(|c| {
                 self.dofs
                     .free_dofs
                     .iter()
                     .map(|&(i, _)| c[i as usize])
                     .collect()
             });
-            self.stiffness.pin(
-                self.pipeline.pattern(),
-                &pinned,
-                self.pin_diagonal,
-                dof_columns.as_deref(),
-            );
+            let dof_columns = dof_columns.as_deref();
+            self.stiffness
+                .pin(pattern, &pinned, self.pin_diagonal, dof_columns);
+            if let (Some((_, values)), Some(p)) =
+                (&mut self.surrogate, self.pipeline.surrogate_pattern())
+            {
+                values.pin(p, &pinned, self.pin_diagonal, dof_columns);
+            }
             for (r, &p) in rhs.iter_mut().zip(&pinned) {
                 if p {
                     *r = 0.0;
                 }
             }
         }
-        self.pipeline.set_pinned(pinned, self.pin_diagonal);
-        let Solved { x, report } = if first {
-            self.pipeline
-                .solve(&self.disc, &self.dofs, &self.stiffness, &rhs)?
-        } else if let Some(terms) = terms {
-            self.pipeline.resolve_update(
-                &self.disc,
-                &self.dofs,
-                &self.stiffness,
-                &rhs,
-                &self.x,
-                terms,
-            )?
-        } else {
-            self.pipeline
-                .resolve(&self.disc, &self.dofs, &self.stiffness, &rhs, &self.x)?
+        check_range(&self.stiffness, pattern, &self.dofs, &self.disc, columns)?;
+        Ok(rhs)
+    }
+
+    /// Assembles `K` and `b` for the current bonds (held unknowns pinned) and
+    /// solves at λ = 1: afresh for the first solve, else reusing the factor.
+    /// Only the columns of `K` that bonds broken since the last solve touch are
+    /// refilled, and `b` only when those include a prescribed point.
+    pub(super) fn solve(&mut self, step: usize, first: bool) -> Result<(), Error> {
+        let terms = if first { None } else { self.low_rank_terms() };
+        let columns = self.changed_columns(first);
+        let rhs = self.refill(columns.as_deref())?;
+        let layout = layout(&self.disc, &self.dofs);
+        let m = Matrices {
+            k: &self.stiffness,
+            surrogate: self.surrogate.as_ref().map(|(_, values)| values),
         };
+        let notes = &mut self.notes;
+        let solved = match terms {
+            _ if first => self.pipeline.solve(layout, m, &rhs, notes),
+            Some(terms) => self
+                .pipeline
+                .resolve_update(layout, m, &rhs, &self.x, terms, notes),
+            None => self.pipeline.resolve(layout, m, &rhs, &self.x, notes),
+        };
+        print_notes(&mut self.notes);
+        let Solved { x, report } = solved?;
         self.x = x;
         let u = self.unit_displacement();
-        self.unit_reactions = reactions(
-            &self.model,
-            &self.disc,
-            &self.dofs,
-            self.pipeline.pattern(),
-            &self.f_ext,
-            &u,
-            1.0,
-        );
+        self.unit_reactions = reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
         self.solves.push(ResolveRecord {
             step,
             bonds_broken: self.pending,
