@@ -12,19 +12,11 @@
 //! re-solve with the old factor (with their ratio to the fresh one), the
 //! total run time, the number of bonds broken and bonds broken per second.
 
-use dhpd::drivers::quasi_static::{self, Observer, Snapshot, StepRecord};
+use dhpd::drivers::quasi_static::{self};
 use dhpd::drivers::static_solve;
-use dhpd::error::Error;
 use dhpd::solve::pipeline::Route;
 use dhpd::validation::fracture::Sent;
 use std::time::Instant;
-
-struct Quiet;
-impl Observer for Quiet {
-    fn record(&mut self, _: &StepRecord, _: Option<&Snapshot>) -> Result<(), Error> {
-        Ok(())
-    }
-}
 
 fn median(mut v: Vec<f64>) -> f64 {
     if v.is_empty() {
@@ -62,7 +54,7 @@ fn main() {
     let start = Instant::now();
     let prepared = static_solve::prepare(&scene).expect("the scene prepares");
     let (points, bonds) = (prepared.disc.points.len(), prepared.disc.bonds.len());
-    let s = quasi_static::run(&scene, prepared, &mut Quiet).expect("the run succeeds");
+    let s = quasi_static::run(&scene, prepared, &mut ()).expect("the run succeeds");
     let total = start.elapsed().as_secs_f64();
     let times = |route: Route| -> Vec<f64> {
         s.solves

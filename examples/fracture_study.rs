@@ -16,9 +16,8 @@
 //! Results go to `validation/fracture/results/` (CSV); `validation/fracture/plot.py`
 //! draws the figures. Add `quick` after the study name for the coarse settings only.
 
-use dhpd::drivers::quasi_static::{self, Observer, QuasiStaticSolution, Snapshot, StepRecord};
+use dhpd::drivers::quasi_static::{self, QuasiStaticSolution};
 use dhpd::drivers::static_solve;
-use dhpd::error::Error;
 use dhpd::output::csv::write_load_displacement;
 use dhpd::reference::FemReference;
 use dhpd::solve::pipeline::Route;
@@ -52,13 +51,6 @@ fn lefm_peak(case: &Sent) -> f64 {
     case["P_c"][k].as_f64().expect("P_c")
 }
 
-struct Quiet;
-impl Observer for Quiet {
-    fn record(&mut self, _: &StepRecord, _: Option<&Snapshot>) -> Result<(), Error> {
-        Ok(())
-    }
-}
-
 /// One run and what the studies read from it.
 struct Outcome {
     solution: QuasiStaticSolution,
@@ -80,7 +72,7 @@ fn run(case: &Sent) -> Outcome {
     let t = Instant::now();
     let prepared = static_solve::prepare(&scene).expect("the scene prepares");
     let points = prepared.disc.points.len();
-    let solution = quasi_static::run(&scene, prepared, &mut Quiet).expect("the run succeeds");
+    let solution = quasi_static::run(&scene, prepared, &mut ()).expect("the run succeeds");
     let seconds = t.elapsed().as_secs_f64();
     let top = solution.set_names.iter().position(|n| n == "top").unwrap();
     let axis = if case.loading == Loading::Tension {
@@ -306,9 +298,9 @@ fn bond_energies(case: &Sent, s: &QuasiStaticSolution) -> (f64, f64, f64) {
     let scene = case.scene();
     let bb = dhpd::model::bond_based::BondBased::new(
         &s.disc,
-        scene.dimension,
+        scene.model.dimension,
         &scene.materials,
-        scene.thickness,
+        scene.model.thickness,
     );
     let criterion = dhpd::damage::Criterion::new(&scene, &s.disc);
     let (x, v, bonds) = (&s.disc.points.x, &s.disc.points.volume, &s.disc.bonds);

@@ -39,7 +39,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             FemReference::from_file(&root.join(format!("fem/reference_nu{label}.json")))?;
         for gradient in [false, true] {
             let mut scene = case.plane_strain_scene(label.parse()?);
-            scene.gradient_dilatation = gradient;
+            scene.model.dilatation = if gradient {
+                dhpd::scene::Dilatation::Gradient
+            } else {
+                dhpd::scene::Dilatation::Weighted
+            };
             let t = Instant::now();
             let s = dhpd::drivers::static_solve::solve(&scene)?;
             let seconds = t.elapsed().as_secs_f64();

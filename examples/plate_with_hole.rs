@@ -62,7 +62,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 };
                 let t = std::time::Instant::now();
                 let mut scene = case.scene();
-                scene.gradient_dilatation = gradient;
+                scene.model.dilatation = if gradient {
+                    dhpd::scene::Dilatation::Gradient
+                } else {
+                    dhpd::scene::Dilatation::Weighted
+                };
                 let s = dhpd::drivers::static_solve::solve(&scene)?;
                 let total = t.elapsed().as_secs_f64();
                 let c = compare_plate(&s, &reference);

@@ -50,7 +50,9 @@
 //! ```
 
 pub mod assembly;
+pub mod csr;
 pub mod damage;
+pub mod default_scene;
 pub mod discretization;
 pub mod drivers;
 pub mod error;
@@ -65,4 +67,10 @@ pub mod solve;
 pub mod validation;
 pub mod vector;
 
+pub use drivers::dynamics::{DynamicsSolution, Outcome as DynamicsOutcome};
+pub use drivers::quasi_static::QuasiStaticSolution;
+pub use drivers::static_solve::StaticSolution;
+pub use drivers::{check, run, Observer, Progress, Snapshot, Solution};
 pub use error::{Error, InputError, NumericalError};
+pub use notes::Notes;
+pub use solve::pipeline::Route;

@@ -172,7 +172,12 @@ fn check_symmetric<M: Model>(model: &M, disc: &Discretization) {
 }
 
 fn bond_based(scene: &Scene, disc: &Discretization) -> BondBased {
-    BondBased::new(disc, scene.dimension, &scene.materials, scene.thickness)
+    BondBased::new(
+        disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    )
 }
 
 /// Generates the contract tests for one model constructor over every setting,
@@ -227,9 +232,9 @@ contract_tests!(
 fn shear(scene: &Scene, disc: &Discretization) -> Shear {
     Shear::new(
         disc,
-        scene.dimension,
+        scene.model.dimension,
         &scene.materials,
-        scene.gradient_dilatation,
+        scene.model.gradient_dilatation(),
     )
     .expect("shape tensors are regular")
 }

@@ -11,23 +11,27 @@ mod common;
 use common::scene;
 use dhpd::discretization;
 use dhpd::drivers::dynamics::kernels::{FamilyKernel, ForceField, PairKernel, Simd};
-use dhpd::drivers::dynamics::{self, DynamicsSolution, Observer, Outcome, Snapshot};
+use dhpd::drivers::dynamics::{self, DynamicsSolution, Outcome};
 use dhpd::drivers::static_solve;
 use dhpd::error::Error;
 use dhpd::model::bond_based::BondBased;
 
-/// Records nothing.
-struct Quiet;
-
-impl Observer for Quiet {
-    fn progress(&mut self, _: usize, _: usize, _: f64, _: usize) {}
-    fn snapshot(&mut self, _: &Snapshot) -> Result<(), Error> {
-        Ok(())
-    }
+/// Runs the scene of `text`, recording the histories of the points `probes`.
+fn run(text: &str, probes: &[usize]) -> DynamicsSolution {
+    let sc = scene(text);
+    let mut setup = dhpd::check(&sc, &mut ()).expect("the scene sets up");
+    setup.plan.probes = probes.iter().map(|&i| (format!("p{i}"), i)).collect();
+    dynamics::run(&sc, setup, &mut ()).expect("the run succeeds")
 }
 
-fn run(text: &str, probes: &[usize]) -> DynamicsSolution {
-    dynamics::run(&scene(text), probes, &mut Quiet).expect("the run succeeds")
+/// The error a run of the scene of `text` stops at.
+fn failure(text: &str) -> Error {
+    let sc = scene(text);
+    let setup = dhpd::check(&sc, &mut ()).expect("the scene sets up");
+    match dynamics::run(&sc, setup, &mut ()) {
+        Ok(_) => panic!("the run succeeded"),
+        Err(e) => e,
+    }
 }
 
 fn nearest(disc: &discretization::Discretization, at: [f64; 3]) -> usize {
@@ -237,7 +241,7 @@ fn the_pair_kernel_is_the_bond_based_kernel() {
     let sc = scene(text);
     let build = || discretization::build(&sc).expect("points");
     let disc = build();
-    let model = BondBased::new(&disc, sc.dimension, &sc.materials, sc.thickness);
+    let model = BondBased::of(&sc, &disc);
     let n = disc.points.len();
     let mut rng = common::Rng::new(7);
     let u: Vec<[f64; 3]> = (0..n)
@@ -348,7 +352,7 @@ fn a_time_step_above_the_stable_one_is_refused() {
     )
     .replace("end_time = 0.1", "steps = 400\ntime_step = 0.1")
         + "[[initial_conditions]]\ngaussian = { center = [0.5], width = 0.1, amplitude = [1e-6] }\n";
-    let Err(Error::Input(e)) = dynamics::run(&scene(&text), &[], &mut Quiet) else {
+    let Error::Input(e) = failure(&text) else {
         panic!("accepted an unstable time step");
     };
     assert_eq!(e.field, "dynamics.time_step");
@@ -359,7 +363,7 @@ fn a_time_step_above_the_stable_one_is_refused() {
         "time_step = 0.1",
         "time_step = 0.1\nforce_time_step = true\nbalance_tolerance = inf",
     );
-    let Err(Error::Numerical(e)) = dynamics::run(&scene(&forced), &[], &mut Quiet) else {
+    let Error::Numerical(e) = failure(&forced) else {
         panic!("a forced unstable run did not report its divergence");
     };
     assert!(e.to_string().contains("diverged"), "{e}");

@@ -7,10 +7,13 @@
 mod common;
 
 use common::scene;
+use dhpd::assembly::pattern::Pattern;
 use dhpd::assembly::stiffness::{self, Stiffness};
 use dhpd::discretization::Discretization;
-use dhpd::drivers::quasi_static::{self, Observer, Outcome, Snapshot, StateKind, StepRecord};
-use dhpd::drivers::static_solve::{self, right_hand_side};
+use dhpd::drivers::quasi_static::{self, Outcome, StateKind, StepRecord};
+use dhpd::drivers::static_solve;
+use dhpd::drivers::system::{self, right_hand_side};
+use dhpd::drivers::{Observer, Snapshot};
 use dhpd::error::Error;
 use dhpd::model::bond_based::BondBased;
 use dhpd::model::shear::Shear;
@@ -20,6 +23,7 @@ use dhpd::notes::Notes;
 use dhpd::scene::Scene;
 use dhpd::solve::low_rank::Term;
 use dhpd::solve::pipeline::{Pipeline, Route};
+use dhpd::solve::route;
 use dhpd::solve::Matrices;
 use dhpd::validation::fracture::Sent;
 
@@ -33,9 +37,13 @@ struct Watch {
 }
 
 impl Observer for Watch {
-    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error> {
+    fn record(&mut self, record: &StepRecord) -> Result<(), Error> {
         self.records.push(record.clone());
-        if let Some(s) = snapshot {
+        Ok(())
+    }
+
+    fn snapshot(&mut self, s: &Snapshot) -> Result<(), Error> {
+        {
             if let Some(before) = &self.intact {
                 for (b, (&was, &is)) in before.iter().zip(&s.disc.bonds.intact).enumerate() {
                     assert!(was || !is, "bond {b} healed at step {}", s.step);
@@ -186,14 +194,20 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
         let scene = case.scene();
         let prepared = static_solve::prepare(&scene).unwrap();
         let (mut disc, dofs, f_ext) = (prepared.disc, prepared.dofs, prepared.f_ext);
-        let surrogate = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+        let surrogate = BondBased::new(
+            &disc,
+            scene.model.dimension,
+            &scene.materials,
+            scene.model.thickness,
+        );
         let mut notes = Notes::default();
         // A pipeline for `disc` as the drivers build one.
         let analyse = |disc: &Discretization, coupling: Coupling, notes: &mut Notes| {
-            let hints = static_solve::solver_hints(&scene, coupling);
-            let ((pattern, _), surrogate) =
-                static_solve::patterns(disc, &dofs, coupling, &scene.solver, hints).unwrap();
-            let layout = static_solve::layout(disc, &dofs);
+            let hints = system::solver_hints(&scene, coupling);
+            let pattern = Pattern::new(disc, &dofs, coupling, None).unwrap();
+            let surrogate = route::wants_surrogate(&scene.solver, hints)
+                .then(|| Pattern::new(disc, &dofs, Coupling::Star, None).unwrap());
+            let layout = system::layout(disc, &dofs);
             Pipeline::analyse(pattern, surrogate, layout, scene.solver, hints, notes).unwrap()
         };
         let surrogate_values = |pipeline: &Pipeline, disc: &Discretization| {
@@ -213,7 +227,12 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             .collect();
         assert!(ahead.len() > 4);
         let (fresh, reused, iterations) = if model_kind == "bond_based" {
-            let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+            let model = BondBased::new(
+                &disc,
+                scene.model.dimension,
+                &scene.materials,
+                scene.model.thickness,
+            );
             let mut pipeline = analyse(&disc, model.coupling(), &mut notes);
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
@@ -221,14 +240,14 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 k: &k,
                 surrogate: None,
             };
-            let layout = static_solve::layout(&disc, &dofs);
+            let layout = system::layout(&disc, &dofs);
             let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
             for &bond in &ahead[..4] {
                 disc.bonds.intact[bond] = false;
             }
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let layout = static_solve::layout(&disc, &dofs);
+            let layout = system::layout(&disc, &dofs);
             let m = Matrices {
                 k: &k,
                 surrogate: None,
@@ -278,7 +297,8 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             assert_eq!(reused.report.route, Route::Reuse);
             (fresh.x, reused.x, reused.report.iterations)
         } else {
-            let mut model = Shear::new(&disc, scene.dimension, &scene.materials, false).unwrap();
+            let mut model =
+                Shear::new(&disc, scene.model.dimension, &scene.materials, false).unwrap();
             let mut pipeline = analyse(&disc, model.coupling(), &mut notes);
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
@@ -287,7 +307,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
                 k: &k,
                 surrogate: s0.as_ref(),
             };
-            let layout = static_solve::layout(&disc, &dofs);
+            let layout = system::layout(&disc, &dofs);
             let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
             let mut owners = Vec::new();
             for &bond in &ahead[..4] {
@@ -297,7 +317,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             assert!(model.refresh_owners(&disc, &owners).is_empty());
             stiffness::fill(&model, &disc, &dofs, pipeline.pattern(), &mut k.values);
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);
-            let layout = static_solve::layout(&disc, &dofs);
+            let layout = system::layout(&disc, &dofs);
             let s1 = surrogate_values(&pipeline, &disc);
             let m = Matrices {
                 k: &k,
@@ -374,7 +394,12 @@ fn grip_work_and_peak_load_against_the_energy_the_bonds_carry() {
         .filter(|w| w[0].state == StateKind::Critical && w[1].state == StateKind::Broken)
         .map(|w| 0.5 * w[1].displacement * (w[0].reactions[top][1] - w[1].reactions[top][1]))
         .sum();
-    let model = BondBased::new(&s.disc, scene.dimension, &scene.materials, scene.thickness);
+    let model = BondBased::new(
+        &s.disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    );
     let criterion = dhpd::damage::Criterion::new(&scene, &s.disc);
     let (x, v, bonds) = (&s.disc.points.x, &s.disc.points.volume, &s.disc.bonds);
     let (mut crossing, mut broken) = (0.0, 0.0);

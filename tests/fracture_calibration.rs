@@ -4,18 +4,11 @@
 //! of a notched plate meets LEFM, and the continuum calibration reproduces the
 //! papers' values (and the numbers the fracture study committed with them).
 
-use dhpd::drivers::quasi_static::{self, Observer, Snapshot, StepRecord};
+use dhpd::drivers::quasi_static;
 use dhpd::drivers::static_solve;
-use dhpd::error::Error;
+
 use dhpd::validation::fracture::{Sent, Strip, NOTCH};
 use std::path::{Path, PathBuf};
-
-struct Quiet;
-impl Observer for Quiet {
-    fn record(&mut self, _: &StepRecord, _: Option<&Snapshot>) -> Result<(), Error> {
-        Ok(())
-    }
-}
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("dhpd-calibration-{name}-{}", std::process::id()));
@@ -123,7 +116,7 @@ fn lefm_critical_load() -> f64 {
 fn peak(case: &Sent) -> f64 {
     let scene = case.scene();
     let prepared = static_solve::prepare(&scene).unwrap();
-    let s = quasi_static::run(&scene, prepared, &mut Quiet).unwrap();
+    let s = quasi_static::run(&scene, prepared, &mut ()).unwrap();
     let top = s.set_names.iter().position(|n| n == "top").unwrap();
     s.records
         .iter()

@@ -60,10 +60,10 @@
 
 mod common;
 
+use dhpd::drivers::setup::Plan;
 use dhpd::drivers::static_solve;
 use dhpd::error::{Error, InputError};
 use dhpd::geometry::point_file;
-use dhpd::output::Plan;
 use dhpd::scene::{
     self, parse_spec, Crack, HorizonRule, LoadTarget, Material, PointFile, Scene, Selection,
 };
@@ -240,9 +240,9 @@ fn check_scene(s: &Scene) -> Result<(), TestCaseError> {
     let d = s.d();
     prop_assert!((1..=3).contains(&d));
     prop_assert!(
-        s.thickness.is_finite() && s.thickness > 0.0,
+        s.model.thickness.is_finite() && s.model.thickness > 0.0,
         "thickness {}",
-        s.thickness
+        s.model.thickness
     );
     prop_assert!(valid_name(&s.name), "scene name {:?}", s.name);
     prop_assert!(!s.materials.is_empty(), "no material");
@@ -384,8 +384,8 @@ fn check_scene(s: &Scene) -> Result<(), TestCaseError> {
         prop_assert!(valid_name(&p.name), "probe name {:?}", p.name);
         check_point(&p.at, d, "probe")?;
     }
-    prop_assert!(!s.output.stress || s.model == scene::ModelKind::Shear);
-    prop_assert!(s.model != scene::ModelKind::Shear || d >= 2);
+    prop_assert!(!s.output.stress || s.model.kind == scene::ModelKind::Shear);
+    prop_assert!(s.model.kind != scene::ModelKind::Shear || d >= 2);
     Ok(())
 }
 
@@ -837,7 +837,7 @@ const BASES: &[(&str, &str)] = &[
     ("plate", PLATE),
     ("shear_plate", SHEAR_PLATE),
     ("cube_3d", CUBE_3D),
-    ("strip_2d", scene::DEFAULT_SCENE),
+    ("strip_2d", dhpd::default_scene::TEXT),
 ];
 
 /// Every base as (name, text, json): the TOML texts and their JSON re-serialisations.

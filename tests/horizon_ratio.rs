@@ -243,7 +243,12 @@ fn patch(d: usize, r: usize, mode: &str) -> Patch {
     ));
     let t = Instant::now();
     let disc = disc(&scene);
-    let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+    let model = BondBased::new(
+        &disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    );
     let h = [[1.0, 0.2], [-0.5, 0.3]];
     let u: Vec<[f64; 3]> = disc
         .points
@@ -265,7 +270,7 @@ fn patch(d: usize, r: usize, mode: &str) -> Patch {
 
     let reach = DELTA_MAX
         + PartialVolume {
-            rule: scene.volume_correction,
+            rule: scene.discretization.volume_correction,
             d,
         }
         .reach(HC);

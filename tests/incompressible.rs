@@ -47,7 +47,11 @@ fn run(label: &str, gradient: bool, method: SolverMethod) -> (StaticSolution, Ho
         .join(format!("validation/stability/fem/reference_nu{label}.json"));
     let reference = FemReference::from_file(&path).expect("reference JSON");
     let mut scene = CASE.plane_strain_scene(nu);
-    scene.gradient_dilatation = gradient;
+    scene.model.dilatation = if gradient {
+        dhpd::scene::Dilatation::Gradient
+    } else {
+        dhpd::scene::Dilatation::Weighted
+    };
     scene.solver.method = method;
     let t = Instant::now();
     let s = solve(&scene).expect("solves");

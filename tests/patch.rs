@@ -108,9 +108,14 @@ fn patch_body(setting: &str, jump: bool) -> Scene {
 fn check_patch(setting: &str, jump: bool) -> usize {
     let scene = patch_body(setting, jump);
     let disc = disc(&scene);
-    let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+    let model = BondBased::new(
+        &disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    );
     let pv = PartialVolume {
-        rule: scene.volume_correction,
+        rule: scene.discretization.volume_correction,
         d: disc.d,
     };
     let reach = disc.points.horizon.iter().fold(0.0f64, |m, &h| m.max(h))
@@ -166,7 +171,12 @@ fn homogeneous_deformation_with_horizon_jump() {
 fn horizon_jump_residual_is_local() {
     let scene = patch_body("1d", true);
     let disc = disc(&scene);
-    let model = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
+    let model = BondBased::new(
+        &disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    );
     let u = homogeneous(&disc, 1e-4);
     let f = internal_forces(&model, &disc, &u, true);
     let mag = force_scale(&model, &disc, &u);

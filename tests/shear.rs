@@ -56,9 +56,9 @@ fn hooke(dimension: &str, nu: f64, strain: &[[f64; 3]; 3], d: usize) -> [[f64; 3
 fn shear_model(scene: &Scene, disc: &Discretization) -> Shear {
     Shear::new(
         disc,
-        scene.dimension,
+        scene.model.dimension,
         &scene.materials,
-        scene.gradient_dilatation,
+        scene.model.gradient_dilatation(),
     )
     .unwrap()
 }
@@ -84,7 +84,7 @@ fn affine(disc: &Discretization, h: &[[f64; 3]; 3]) -> Vec<[f64; 3]> {
 /// Points whose horizon (plus the bond reach) stays inside the body.
 fn interior(disc: &Discretization, scene: &Scene) -> Vec<usize> {
     let pv = PartialVolume {
-        rule: scene.volume_correction,
+        rule: scene.discretization.volume_correction,
         d: disc.d,
     };
     let p = &disc.points;
@@ -255,9 +255,9 @@ fn singular_shape_tensor_is_reported() {
     let disc = disc(&scene);
     let err = Shear::new(
         &disc,
-        scene.dimension,
+        scene.model.dimension,
         &scene.materials,
-        scene.gradient_dilatation,
+        scene.model.gradient_dilatation(),
     )
     .unwrap_err();
     assert!(err.to_string().contains("shape tensor of point"), "{err}");

@@ -3,7 +3,7 @@
 //! `F_int,i = Σ_{b owned by i} f_b − Σ_{b ending at i} f_b`, where `f_b` is the
 //! force bond `b` puts on its owner (formulation Sec. 2).
 
-use super::split_at_offsets;
+use crate::csr::split_at_offsets;
 use crate::discretization::Discretization;
 use crate::model::Model;
 use rayon::prelude::*;

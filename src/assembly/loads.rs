@@ -30,16 +30,31 @@ pub struct AppliedLoad {
     pub total_force: [f64; 3],
 }
 
-/// Builds the external force on every point.
+/// The external forces of a scene's loads.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExternalForces {
+    /// The force on every point, every load at its full value.
+    pub total: Vec<[f64; 3]>,
+    /// Each load's force on each point it loads (explicit dynamics scales each
+    /// by its time function).
+    pub per_load: Vec<Vec<(usize, [f64; 3])>>,
+    /// The total force of each load, for the summary.
+    pub applied: Vec<AppliedLoad>,
+}
+
+/// Builds the external force of every load on every point.
 pub fn external_forces(
     disc: &Discretization,
     loads: &[Load],
-) -> Result<(Vec<[f64; 3]>, Vec<AppliedLoad>), InputError> {
+) -> Result<ExternalForces, InputError> {
     let (points, d) = (&disc.points, disc.d);
     let n = points.len();
     let mut f = vec![[0.0; 3]; n];
     let mut applied = Vec::with_capacity(loads.len());
+    let mut per_load = Vec::with_capacity(loads.len());
     for (k, load) in loads.iter().enumerate() {
+        // This load's own forces (a point may take several facets).
+        let mut own = vec![[0.0; 3]; n];
         let field = match load.selection {
             Some(Selection::Group(_)) => format!("loads[{k}].group"),
             _ => format!("loads[{k}].box"),
@@ -67,6 +82,7 @@ pub fn external_forces(
                     for c in 0..d {
                         let fc = load.value[c] * area;
                         f[i][c] += fc;
+                        own[i][c] += fc;
                         total[c] += fc;
                     }
                     finite(k, &f[i], i)?;
@@ -79,6 +95,7 @@ pub fn external_forces(
                     for c in 0..d {
                         let fc = load.value[c] * points.volume[i];
                         f[i][c] += fc;
+                        own[i][c] += fc;
                         total[c] += fc;
                     }
                     finite(k, &f[i], i)?;
@@ -113,6 +130,7 @@ pub fn external_forces(
                     for c in 0..d {
                         let fc = load.value[c] * share;
                         f[i][c] += fc;
+                        own[i][c] += fc;
                         total[c] += fc;
                     }
                     finite(k, &f[i], i)?;
@@ -134,8 +152,18 @@ pub fn external_forces(
             points: count,
             total_force: total,
         });
+        per_load.push(
+            own.into_iter()
+                .enumerate()
+                .filter(|(_, v)| v.iter().any(|&c| c != 0.0))
+                .collect(),
+        );
     }
-    Ok((f, applied))
+    Ok(ExternalForces {
+        total: f,
+        per_load,
+        applied,
+    })
 }
 
 /// Largest point force accepted, in N: products with the stiffness and sums over

@@ -13,17 +13,3 @@ pub mod loads;
 pub mod pattern;
 pub mod rigid_modes;
 pub mod stiffness;
-
-/// Splits `data` into consecutive mutable chunks at `offsets` (length n + 1, starting at 0).
-pub(crate) fn split_at_offsets<'a, T>(
-    mut data: &'a mut [T],
-    offsets: &[usize],
-) -> Vec<&'a mut [T]> {
-    let mut chunks = Vec::with_capacity(offsets.len().saturating_sub(1));
-    for w in offsets.windows(2) {
-        let (head, tail) = data.split_at_mut(w[1] - w[0]);
-        chunks.push(head);
-        data = tail;
-    }
-    chunks
-}

@@ -12,7 +12,7 @@
 //! pattern (and the symbolic factorisation) never changes when bonds break.
 
 use super::dofs::DofMap;
-use super::split_at_offsets;
+use crate::csr::split_at_offsets;
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
 use crate::memory::{check_memory, memory_limit};

@@ -7,7 +7,7 @@
 
 use super::dofs::{DofMap, PRESCRIBED};
 use super::pattern::Pattern;
-use super::split_at_offsets;
+use crate::csr::split_at_offsets;
 use crate::discretization::Discretization;
 use crate::model::{Block, Column, Model};
 use faer::sparse::SparseColMatRef;
@@ -76,7 +76,7 @@ impl Stiffness {
         columns: Option<&[bool]>,
     ) {
         use rayon::prelude::*;
-        crate::assembly::split_at_offsets(&mut self.values, &pattern.col_ptr)
+        crate::csr::split_at_offsets(&mut self.values, &pattern.col_ptr)
             .into_par_iter()
             .enumerate()
             .for_each(|(col, values)| {

@@ -211,20 +211,21 @@ fn continuum_critical_value(scene: &Scene, disc: &Discretization, i: usize, g0: 
     let p = &disc.points;
     let material = &scene.materials[p.material[i] as usize];
     let horizon = p.horizon[i];
-    match scene.model {
+    match scene.model.kind {
         ModelKind::BondBased => {
             // C per volume² including thickness/area; per unit thickness × t.
-            let per_unit = if scene.dimension == Dimension::Three {
+            let per_unit = if scene.model.dimension == Dimension::Three {
                 1.0
             } else {
-                scene.thickness
+                scene.model.thickness
             };
-            let c =
-                2.0 * material.micromodulus(scene.dimension, horizon, scene.thickness) * per_unit;
+            let c = 2.0
+                * material.micromodulus(scene.model.dimension, horizon, scene.model.thickness)
+                * per_unit;
             critical_stretch(disc.d, c, horizon, g0)
         }
         ModelKind::Shear => {
-            let (_, mu) = material.moduli(scene.dimension);
+            let (_, mu) = material.moduli(scene.model.dimension);
             critical_deviatoric_strain(disc.d, mu, horizon, g0, scene.fracture.shear_energy)
         }
     }
@@ -244,13 +245,15 @@ fn lattice_factors(
     if matches!(disc.points.source[i], Source::Mesh { .. }) {
         return Err(Uncalibrated::Irregular);
     }
-    match scene.model {
-        ModelKind::BondBased => {
-            calibration::bond_based_factors(scene.dimension, scene.volume_correction, m)
-        }
+    match scene.model.kind {
+        ModelKind::BondBased => calibration::bond_based_factors(
+            scene.model.dimension,
+            scene.discretization.volume_correction,
+            m,
+        ),
         ModelKind::Shear => calibration::shear_factors(
-            scene.dimension,
-            scene.volume_correction,
+            scene.model.dimension,
+            scene.discretization.volume_correction,
             scene.fracture.shear_criterion,
             scene.fracture.shear_energy,
             scene.materials[disc.points.material[i] as usize].poisson_ratio,
@@ -273,13 +276,13 @@ impl Criterion {
             calibration,
             groups: Vec::new(),
         };
-        let energy_moduli = (scene.model == ModelKind::Shear
+        let energy_moduli = (scene.model.kind == ModelKind::Shear
             && scene.fracture.shear_criterion == ShearCriterion::Energy)
             .then(|| {
                 (0..p.len())
                     .map(|i| {
                         let material = &scene.materials[p.material[i] as usize];
-                        let (kappa, mu) = material.moduli(scene.dimension);
+                        let (kappa, mu) = material.moduli(scene.model.dimension);
                         (0.5 * kappa, disc.d as f64 * mu)
                     })
                     .collect::<Vec<_>>()
@@ -320,7 +323,7 @@ impl Criterion {
         let criterion = Criterion {
             critical,
             protected,
-            tension_check: scene.model == ModelKind::Shear,
+            tension_check: scene.model.kind == ModelKind::Shear,
             energy_moduli,
         };
         (criterion, report)
@@ -362,13 +365,13 @@ impl Criterion {
     ) {
         let bonds = &disc.bonds;
         let n = disc.points.len();
-        let dilatation: Vec<Option<f64>> = crate::assembly::split_at_offsets(out, &bonds.offsets)
+        let dilatation: Vec<Option<f64>> = crate::csr::split_at_offsets(out, &bonds.offsets)
             .into_par_iter()
             .enumerate()
             .map(|(i, strains)| model.bond_strains(disc, i, u, linear, strains))
             .collect();
         debug_assert_eq!(dilatation.len(), n);
-        crate::assembly::split_at_offsets(out, &bonds.offsets)
+        crate::csr::split_at_offsets(out, &bonds.offsets)
             .into_par_iter()
             .enumerate()
             .for_each(|(i, ratios)| {

@@ -26,6 +26,7 @@ use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::grid::{self, RawPoint, Source};
 use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::point_file;
+use crate::notes::Notes;
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
 use crate::vector::{norm, sub};
 use groups::PointGroup;
@@ -175,9 +176,11 @@ pub struct RawBody {
     pub mesh_groups: Vec<MeshGroup>,
 }
 
-/// Builds the points of a scene (grids, point files, holes, horizon mode) and their bonds.
+/// Builds the points of a scene (grids, point files, holes, horizon mode) and
+/// their bonds, notes dropped: for the crate's tests and studies (the drivers
+/// start from their setup).
 pub fn build(scene: &Scene) -> Result<Discretization, Error> {
-    discretize(scene, generate_points(scene)?)
+    discretize(scene, generate_points(scene)?, &mut Notes::default())
 }
 
 /// Generates the raw points of the scene, holes removed, horizons set.
@@ -186,25 +189,25 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     let mut raw: Vec<RawPoint> = Vec::new();
     let mut mesh_groups = Vec::new();
     for (k, region) in scene.regions.iter().enumerate() {
-        raw.extend(grid::fill(region, k, d, scene.thickness));
+        raw.extend(grid::fill(region, k, d, scene.model.thickness));
     }
     for (k, file) in scene.point_files.iter().enumerate() {
         let text = crate::scene::read_text_file(
             &file.path,
             &format!("{}.path", file.field),
-            crate::scene::MAX_POINT_FILE_BYTES,
+            crate::scene::read::MAX_POINT_FILE_BYTES,
         )?;
         raw.extend(point_file::parse(
             &text,
             file,
             k,
             d,
-            scene.thickness,
+            scene.model.thickness,
             &scene.materials,
         )?);
     }
     for (k, file) in scene.meshes.iter().enumerate() {
-        let mesh = mesh_file::import(file, k, d, scene.thickness)?;
+        let mesh = mesh_file::import(file, k, d, scene.model.thickness)?;
         raw.extend(mesh.points);
         mesh_groups.extend(mesh.groups);
     }
@@ -220,7 +223,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     check_scales(&raw, scene)?;
     reject_duplicates(&raw)?;
     overlap::reject_overlaps(&raw, &scene.regions, d)?;
-    if scene.horizons == HorizonMode::Constant {
+    if scene.model.horizons == HorizonMode::Constant {
         let largest = raw.iter().map(|p| p.horizon).fold(0.0, f64::max);
         raw.iter_mut().for_each(|p| p.horizon = largest);
     }
@@ -232,7 +235,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
 
 /// Refuses an imported point (point file, mesh) whose spacing or coordinates
 /// lie outside the lengths double precision holds for the bond computations
-/// ([`crate::scene::length_in_range`]) or whose bond stiffness is out of range
+/// ([`crate::scene::fields::length_in_range`]) or whose bond stiffness is out of range
 /// (regions are checked with the scene).
 fn check_scales(raw: &[RawPoint], scene: &Scene) -> Result<(), InputError> {
     for p in raw {
@@ -240,19 +243,19 @@ fn check_scales(raw: &[RawPoint], scene: &Scene) -> Result<(), InputError> {
             continue;
         }
         let field = p.source.to_string();
-        crate::scene::length_in_range(&field, "spacing", p.spacing)?;
+        crate::scene::fields::length_in_range(&field, "spacing", p.spacing)?;
         for &x in &p.x[..scene.d()] {
-            crate::scene::length_in_range(&field, "coordinate", x)?;
+            crate::scene::fields::length_in_range(&field, "coordinate", x)?;
         }
-        crate::scene::bond_stiffness_in_range(
+        crate::scene::material::bond_stiffness_in_range(
             &field,
             &field,
-            scene.dimension,
+            scene.model.dimension,
             &scene.materials[p.material as usize],
             p.spacing,
             p.horizon,
             p.volume,
-            scene.thickness,
+            scene.model.thickness,
         )?;
     }
     Ok(())
@@ -306,8 +309,13 @@ fn reject_duplicates(raw: &[RawPoint]) -> Result<(), InputError> {
     Ok(())
 }
 
-/// Builds bonds for given points, applying the isolated-point policy.
-pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error> {
+/// Builds bonds for given points, applying the isolated-point policy (a
+/// warning in `notes` for the points it removes).
+pub fn discretize(
+    scene: &Scene,
+    body: RawBody,
+    notes: &mut Notes,
+) -> Result<Discretization, Error> {
     let d = scene.d();
     let RawBody {
         points: mut raw,
@@ -320,7 +328,7 @@ pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error>
             &points,
             d,
             &scene.cracks,
-            scene.volume_correction,
+            scene.discretization.volume_correction,
             scene.solver.memory_limit_bytes,
         )?;
         let touches = bonds.touch_counts(points.len());
@@ -334,7 +342,7 @@ pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error>
                 removed_isolated,
             });
         }
-        match scene.isolated_points {
+        match scene.discretization.isolated_points {
             IsolatedPolicy::Error => {
                 return Err(NumericalError::IsolatedPoints {
                     count: isolated.len(),
@@ -344,11 +352,11 @@ pub fn discretize(scene: &Scene, body: RawBody) -> Result<Discretization, Error>
                 .into())
             }
             IsolatedPolicy::Remove => {
-                eprintln!(
+                notes.push(format!(
                     "warning: removing {} point(s) without any bond (first at {:?})",
                     isolated.len(),
                     points.x[isolated[0]]
-                );
+                ));
                 removed_isolated += isolated.len();
                 let mut keep = vec![true; raw.len()];
                 isolated.iter().for_each(|&i| keep[i] = false);

@@ -105,7 +105,7 @@ pub fn parse(
                 num(spacing)
             )));
         }
-        let factor = crate::scene::MAX_HORIZON_FACTOR;
+        let factor = crate::scene::fields::MAX_HORIZON_FACTOR;
         if horizon > factor * spacing {
             return Err(at(format!(
                 "horizon {} is {} times the point's equivalent spacing {} \

@@ -15,7 +15,7 @@
 
 use super::{Block, Column, Coupling, Model};
 use crate::discretization::Discretization;
-use crate::scene::{Dimension, Material};
+use crate::scene::{Dimension, Material, Scene};
 use crate::vector::{dot, norm, sub};
 
 /// The bond-based model with each point's micromodulus.
@@ -46,6 +46,16 @@ impl BondBased {
         let p = &disc.points;
         let j = disc.bonds.neighbour[b] as usize;
         self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b]
+    }
+
+    /// The model of `scene` on `disc`.
+    pub fn of(scene: &Scene, disc: &Discretization) -> Self {
+        Self::new(
+            disc,
+            scene.model.dimension,
+            &scene.materials,
+            scene.model.thickness,
+        )
     }
 
     /// Linearised stiffness block `k` of bond `b` owned by `i`.

@@ -12,6 +12,10 @@ pub mod bond_based;
 pub mod shear;
 
 use crate::discretization::Discretization;
+use crate::error::NumericalError;
+use crate::scene::{ModelKind, Scene};
+use bond_based::BondBased;
+use shear::Shear;
 
 /// A 3 × 3 block (only the leading d × d part is used).
 pub type Block = [[f64; 3]; 3];
@@ -99,4 +103,90 @@ pub trait Model: Sync + Send {
         column: Column,
         add: &mut dyn FnMut(usize, &Block),
     );
+}
+
+/// The scene's model on a discretisation: the one place a model kind becomes
+/// a model ([`AnyModel::new`]); it forwards every kernel to that model.
+#[derive(Debug, Clone)]
+pub enum AnyModel {
+    /// Bond-based DH-PD.
+    BondBased(BondBased),
+    /// The shear-deformation DH-PD.
+    Shear(Shear),
+}
+
+impl AnyModel {
+    /// The model `scene` names, with every owner's data on `disc` (an error
+    /// names a shear-model owner whose bonds do not span the space).
+    pub fn new(scene: &Scene, disc: &Discretization) -> Result<Self, NumericalError> {
+        Ok(match scene.model.kind {
+            ModelKind::BondBased => AnyModel::BondBased(BondBased::of(scene, disc)),
+            ModelKind::Shear => AnyModel::Shear(Shear::of(scene, disc)?),
+        })
+    }
+}
+
+/// Forwards a kernel call to the model inside an [`AnyModel`].
+macro_rules! forward {
+    ($model:expr, $m:ident => $call:expr) => {
+        match $model {
+            AnyModel::BondBased($m) => $call,
+            AnyModel::Shear($m) => $call,
+        }
+    };
+}
+
+impl Model for AnyModel {
+    fn coupling(&self) -> Coupling {
+        forward!(self, m => m.coupling())
+    }
+
+    fn owner_forces(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    ) {
+        forward!(self, m => m.owner_forces(disc, owner, u, linear, out))
+    }
+
+    fn bond_strains(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [f64],
+    ) -> Option<f64> {
+        forward!(self, m => m.bond_strains(disc, owner, u, linear, out))
+    }
+
+    fn refresh_owners(&mut self, disc: &Discretization, owners: &[usize]) -> Vec<usize> {
+        forward!(self, m => m.refresh_owners(disc, owners))
+    }
+
+    fn bond_stiffness(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        b: usize,
+    ) -> Option<(f64, [f64; 3])> {
+        forward!(self, m => m.bond_stiffness(disc, owner, b))
+    }
+
+    fn stress(&self, disc: &Discretization, owner: usize, u: &[[f64; 3]]) -> Option<Block> {
+        forward!(self, m => m.stress(disc, owner, u))
+    }
+
+    fn tangent_column(
+        &self,
+        disc: &Discretization,
+        owner: usize,
+        column: Column,
+        add: &mut dyn FnMut(usize, &Block),
+    ) {
+        forward!(self, m => m.tangent_column(disc, owner, column, add))
+    }
 }

@@ -1,7 +1,8 @@
 //! Shear-deformation dual-horizon PD (Ren, Zhuang & Rabczuk, seed 001;
 //! formulation Sec. 4), 2D (plane stress, plane strain) and 3D.
 //!
-//! Per owner `i`, over its intact bonds, with `ω_j = 1/|ξ_j|²` (001 Eq. 9) and
+//! Per owner `i`, over its intact bonds, with `ω_j = 1/|ξ_j|²` (the influence
+//! function 001 recommends after its Eq. 22) and
 //! `w_j = ω_j V_j ν_ij`:
 //!
 //! ```text
@@ -53,7 +54,7 @@ pub const NEAR_INCOMPRESSIBLE: f64 = 0.49;
 use super::{Block, Column, Coupling, Model};
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
-use crate::scene::{Dimension, Material};
+use crate::scene::{Dimension, Material, Scene};
 use crate::vector::{dot, sub};
 
 type Mat3 = [[f64; 3]; 3];
@@ -126,6 +127,16 @@ impl Shear {
             owners,
             gradient_dilatation,
         })
+    }
+
+    /// The model of `scene` on `disc` ([`Shear::new`]).
+    pub fn of(scene: &Scene, disc: &Discretization) -> Result<Self, NumericalError> {
+        Self::new(
+            disc,
+            scene.model.dimension,
+            &scene.materials,
+            scene.model.gradient_dilatation(),
+        )
     }
 
     /// Stress at `owner` for displacements `u` (001 Eq. 32); `linear` selects the

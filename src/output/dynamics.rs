@@ -1,88 +1,16 @@
-//! Outputs of an explicit run: the VTU series (`series.pvd`, one file every
-//! `output.every` steps and at `output.steps`, with displacement, velocity and
-//! damage), `history.csv` (energies, balance error, bonds broken, reactions),
-//! `probes.csv` (displacement, velocity and damage of each probe), the final
-//! state (`points.vtu`, `points.csv`) and `summary.json`; progress on stderr
-//! (step, time, bonds broken, ETA): a bar on a terminal, a line every 30 s
-//! otherwise ([`super::progress`]). Everything goes through a staging
-//! directory (no partial result).
+//! Outputs of an explicit run: `history.csv` (energies, balance error, bonds
+//! broken, reactions), `probes.csv` (displacement, velocity and damage of each
+//! probe), the final state (`points.vtu`, `points.csv`) and `summary.json`
+//! (the VTU series is written while the run goes, [`super::series`]).
 
 use super::csv::{header, row};
-use super::progress::Progress;
-use super::{vtu, Plan, PointData, Staging};
-use crate::drivers::dynamics::{DynamicsSolution, Observer, Snapshot};
+use super::PointData;
+use crate::drivers::dynamics::DynamicsSolution;
+use crate::drivers::setup::Plan;
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
 use std::fmt::Write;
-use std::path::{Path, PathBuf};
-
-/// Writes the series' files and shows progress while a run goes.
-pub struct DynamicsWriter {
-    dir: PathBuf,
-    entries: Vec<(f64, String)>,
-    /// Created at the first step, when the number of steps is known.
-    progress: Option<Progress>,
-    /// A dynamic relaxation (no physical time).
-    relaxation: bool,
-}
-
-impl DynamicsWriter {
-    /// Writes into `dir` (the staging directory); `relaxation`: the run is a
-    /// dynamic relaxation (its steps have no physical time, and it ends at its
-    /// tolerance, so the ETA is that of all its steps).
-    pub fn new(dir: &Path, relaxation: bool) -> Self {
-        Self {
-            dir: dir.to_path_buf(),
-            entries: Vec::new(),
-            progress: None,
-            relaxation,
-        }
-    }
-
-    /// The `(time, file)` entries written; ends the progress display.
-    pub fn finish(mut self) -> Vec<(f64, String)> {
-        if let Some(p) = &mut self.progress {
-            p.finish();
-        }
-        self.entries
-    }
-}
-
-impl Observer for DynamicsWriter {
-    fn progress(&mut self, step: usize, steps: usize, time: f64, broken: usize) {
-        // Every 16th step: the clock is read once per 16 steps.
-        if step % 16 != 0 {
-            return;
-        }
-        let relaxation = self.relaxation;
-        self.progress
-            .get_or_insert_with(|| Progress::new(Some(steps as u64), "step"))
-            .update(step as u64, step as f64 / steps.max(1) as f64, || {
-                if relaxation {
-                    "dynamic relaxation (ends at its tolerance, at the latest at the last step)"
-                        .to_string()
-                } else {
-                    format!("t = {time:.4e} s, bonds broken {broken}")
-                }
-            });
-    }
-
-    fn snapshot(&mut self, s: &Snapshot) -> Result<(), Error> {
-        let file = format!("step_{:06}.vtu", s.step);
-        vtu::write(
-            &self.dir.join(&file),
-            &PointData {
-                disc: s.disc,
-                u: s.u,
-                velocity: Some(s.v),
-                stress: None,
-                damage: Some(s.damage),
-            },
-        )?;
-        self.entries.push((s.time, file));
-        Ok(())
-    }
-}
+use std::path::Path;
 
 /// Refuses a non-finite number in the history or the probes, naming its
 /// column and step (the run checks its state every step, so this is a last
@@ -215,18 +143,16 @@ struct Summary<'a> {
     log: &'a [String],
 }
 
-/// Writes the final state, the history, the probes, the series collection and
-/// the summary of an explicit run into the staging directory, then commits it.
-pub fn write(
-    staging: Staging,
+/// Writes the final state, the history, the probes and the summary of an
+/// explicit run into `tmp` (the staging directory).
+pub(crate) fn write(
+    tmp: &Path,
     scene: &Scene,
-    plan: &Plan,
     solution: &DynamicsSolution,
-    series: &[(f64, String)],
     total_seconds: f64,
 ) -> Result<(), Error> {
     check_finite(solution)?;
-    let tmp = staging.path();
+    let plan = &solution.plan;
     let data = PointData {
         disc: &solution.disc,
         u: &solution.u,
@@ -243,16 +169,13 @@ pub fn write(
     if !plan.probes.is_empty() {
         write_probes(&tmp.join("probes.csv"), solution, plan)?;
     }
-    if !series.is_empty() {
-        vtu::write_collection(&tmp.join("series.pvd"), series)?;
-    }
     let dy = scene.dynamics.as_ref().expect("a dynamics scene");
     let summary = Summary {
         scene: &scene.name,
         version: env!("CARGO_PKG_VERSION"),
         model: format!(
             "{:?} {:?} {:?} horizons",
-            scene.model, scene.dimension, scene.horizons
+            scene.model.kind, scene.model.dimension, scene.model.horizons
         ),
         method: format!("{:?}", dy.method),
         kernel: &solution.kernel,
@@ -276,6 +199,5 @@ pub fn write(
     let text = serde_json::to_string_pretty(&summary).map_err(|e| NumericalError::NonFinite {
         what: format!("summary ({e})"),
     })?;
-    super::write_file(&tmp.join("summary.json"), &text)?;
-    staging.commit()
+    super::write_file(&tmp.join("summary.json"), &text)
 }

@@ -1,15 +1,14 @@
 //! Interrupted runs (SIGINT, SIGTERM) and the staging directories they leave.
 //!
 //! Results are written into a staging sibling `.NAME.partial-PID` of the output
-//! directory ([`super::Staging`]). A run stopped by a signal would leave it
+//! directory ([`super::Results`]). A run stopped by a signal would leave it
 //! behind: [`install`] blocks SIGINT and SIGTERM in the process (before any
 //! worker thread exists, so every thread inherits the mask) and waits for them
 //! on a thread of its own, which removes every staging directory still
-//! registered, says so on stderr and exits with `128 + signal` (130 for SIGINT,
-//! 143 for SIGTERM). A run killed outright (SIGKILL, a timeout's kill, a power
-//! cut) cannot clean up: [`clear_stale`] removes, before the next run writes
-//! beside the same output, the staging directories of processes that no longer
-//! exist.
+//! registered, has the caller say so and exits with `128 + signal` (130 for
+//! SIGINT, 143 for SIGTERM). A run killed outright (SIGKILL, a timeout's kill,
+//! a power cut) cannot clean up: the next run writing beside the same output
+//! removes the staging directories of processes that no longer exist.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -31,10 +30,11 @@ pub(super) fn unregister(path: &Path) {
     }
 }
 
-/// Handles SIGINT and SIGTERM as described in the module docs. Call it first
-/// in `main`, before any thread is started.
+/// Handles SIGINT and SIGTERM as described in the module docs; `report` is
+/// told the signal's name and how many partial results were removed, before
+/// the process exits. Call it first in `main`, before any thread is started.
 #[cfg(unix)]
-pub fn install() {
+pub fn install(report: fn(signal: &str, removed: usize)) {
     // SAFETY: plain libc calls on a local, initialised signal set; the mask is
     // set before any other thread exists.
     unsafe {
@@ -61,10 +61,7 @@ pub fn install() {
             } else {
                 "SIGTERM"
             };
-            eprintln!(
-                "dhpd: interrupted by {name}; {} partial result(s) removed, nothing written",
-                list.len()
-            );
+            report(name, list.len());
             std::process::exit(128 + signal);
         });
     }
@@ -72,7 +69,7 @@ pub fn install() {
 
 /// Without Unix signals, nothing to install.
 #[cfg(not(unix))]
-pub fn install() {}
+pub fn install(_report: fn(signal: &str, removed: usize)) {}
 
 /// Whether process `pid` exists.
 #[cfg(unix)]
@@ -88,10 +85,11 @@ fn alive(_pid: i32) -> bool {
 }
 
 /// Removes the staging directories `.NAME.partial-PID` beside `dir` whose
-/// process no longer exists; returns how many.
-pub(super) fn clear_stale(dir: &Path) -> usize {
+/// process no longer exists; returns each with its process.
+pub(super) fn clear_stale(dir: &Path) -> Vec<(PathBuf, i32)> {
+    let mut removed = Vec::new();
     let Some(name) = dir.file_name().map(|n| n.to_string_lossy().into_owned()) else {
-        return 0;
+        return removed;
     };
     let parent = match dir.parent() {
         Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
@@ -99,9 +97,8 @@ pub(super) fn clear_stale(dir: &Path) -> usize {
     };
     let prefix = format!(".{name}.partial-");
     let Ok(entries) = std::fs::read_dir(&parent) else {
-        return 0;
+        return removed;
     };
-    let mut removed = 0;
     for entry in entries.flatten() {
         let file = entry.file_name().to_string_lossy().into_owned();
         let Some(pid) = file
@@ -113,12 +110,7 @@ pub(super) fn clear_stale(dir: &Path) -> usize {
         if pid > 0 && pid as u32 != std::process::id() && !alive(pid) {
             let path = entry.path();
             if std::fs::remove_dir_all(&path).is_ok() {
-                eprintln!(
-                    "note: removed {}, the partial result of an earlier run (process {pid}) that \
-                     was killed",
-                    path.display()
-                );
-                removed += 1;
+                removed.push((path, pid));
             }
         }
     }

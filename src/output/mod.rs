@@ -1,99 +1,71 @@
-//! Observers: VTK, CSV, JSON summary and Matrix Market, written atomically.
+//! Results on disk: VTK (points and the series of a fracture or explicit run),
+//! CSV, the JSON summary and Matrix Market, written atomically by [`Results`].
 //!
 //! Everything goes into a temporary sibling directory that is renamed to the
-//! requested one only when complete, so a failed run leaves no partial result.
+//! requested one only when complete, so a failed run leaves no partial result;
+//! [`interrupt`] removes it when the run is stopped by a signal.
 
 pub mod csv;
 pub mod dynamics;
 pub mod interrupt;
 pub mod matrix_market;
-pub mod progress;
 pub mod series;
 pub mod summary;
 pub mod vtu;
 
 use crate::discretization::Discretization;
 use crate::drivers::quasi_static::QuasiStaticSolution;
+use crate::drivers::setup::Plan;
 use crate::drivers::static_solve::StaticSolution;
+use crate::drivers::{Observer, Snapshot, Solution};
 use crate::error::{Error, InputError, NumericalError};
 use crate::model::Block;
+use crate::notes::Notes;
 use crate::scene::Scene;
-use crate::vector::{dot, norm, sub};
+use series::Series;
 use std::path::{Path, PathBuf};
 
-/// The points each requested profile and probe reads, resolved before solving.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Plan {
-    /// Per profile: `(name, [(arc length, point)])` sorted by arc length.
-    pub profiles: Vec<(String, Vec<(f64, usize)>)>,
-    /// Per probe: `(name, nearest point)`.
-    pub probes: Vec<(String, usize)>,
+/// A run's results in a directory, written atomically: the series' step files
+/// while the run goes (it is an [`Observer`] of snapshots), the rest when it
+/// ends; the directory is replaced only when every file is written.
+pub struct Results {
+    staging: Staging,
+    series: Series,
 }
 
-impl Plan {
-    /// Selects the profile and probe points; a profile, or a `fracture.no_fail`
-    /// box, that selects no point is an input error.
-    pub fn new(scene: &Scene, disc: &Discretization) -> Result<Self, InputError> {
-        let x = &disc.points.x;
-        let mut profiles = Vec::new();
-        for (k, p) in scene.output.profiles.iter().enumerate() {
-            let dir = sub(&p.to, &p.from);
-            let len = norm(&dir);
-            let mut pts: Vec<(f64, usize)> = (0..x.len())
-                .filter_map(|i| {
-                    let rel = sub(&x[i], &p.from);
-                    let s = dot(&rel, &dir) / len;
-                    let off = sub(&rel, &std::array::from_fn(|a| s * dir[a] / len));
-                    let tol = 0.5 * disc.points.spacing[i] * (1.0 + 1e-9);
-                    (s >= -tol && s <= len + tol && norm(&off) <= tol).then_some((s, i))
-                })
-                .collect();
-            if pts.is_empty() {
-                return Err(InputError::new(
-                    format!("output.profiles[{k}]"),
-                    format!(
-                        "profile \"{}\" passes within half a spacing of no point",
-                        p.name
-                    ),
-                ));
-            }
-            pts.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            profiles.push((p.name.clone(), pts));
+impl Results {
+    /// Checks that `dir` may receive results ([`check_output_dir`]) and
+    /// creates the staging directory beside it; what that cleaned up (the
+    /// staging directories of runs that were killed) goes to `notes`.
+    pub fn new(dir: &Path, notes: &mut Notes) -> Result<Self, Error> {
+        check_output_dir(dir)?;
+        let staging = Staging::new(dir, notes)?;
+        let series = Series::new(staging.path());
+        Ok(Self { staging, series })
+    }
+
+    /// Writes every requested output of `solution` into the staging
+    /// directory, then replaces the output directory by it.
+    pub fn finish(
+        self,
+        scene: &Scene,
+        solution: &Solution,
+        total_seconds: f64,
+    ) -> Result<(), Error> {
+        let tmp = self.staging.path();
+        match solution {
+            Solution::Static(s) => write_static(tmp, scene, s, total_seconds)?,
+            Solution::QuasiStatic(s) => write_quasi_static(tmp, scene, s, total_seconds)?,
+            Solution::Dynamics(s) => dynamics::write(tmp, scene, s, total_seconds)?,
         }
-        let mut probes = Vec::new();
-        for (k, p) in scene.output.probes.iter().enumerate() {
-            let nearest = (0..x.len())
-                .min_by(|&a, &b| norm(&sub(&x[a], &p.at)).total_cmp(&norm(&sub(&x[b], &p.at))))
-                .unwrap_or(0);
-            // A location inside the body is within half a cell diagonal of a point.
-            let distance = norm(&sub(&x[nearest], &p.at));
-            let spacing = disc.points.spacing[nearest];
-            if !(distance <= spacing) {
-                return Err(InputError::new(
-                    format!("output.probes[{k}].at"),
-                    format!(
-                        "probe \"{}\" is {distance:.4e} m from the nearest point ({:?}), more than \
-                         that point's spacing {spacing:e} m: the location is outside the body \
-                         (or in a hole); move it onto the body",
-                        p.name,
-                        &x[nearest][..disc.d]
-                    ),
-                ));
-            }
-            probes.push((p.name.clone(), nearest));
-        }
-        // A no-fail box that holds no point protects nothing, as a boundary or
-        // load box that selects nothing does nothing: both are input errors.
-        for (k, b) in scene.fracture.no_fail.iter().enumerate() {
-            if !x.iter().any(|p| b.contains(p)) {
-                return Err(InputError::new(
-                    format!("fracture.no_fail[{k}].box"),
-                    "selects no point; give a box that holds the points whose bonds must not \
-                     break",
-                ));
-            }
-        }
-        Ok(Plan { profiles, probes })
+        self.series.finish()?;
+        self.staging.commit()
+    }
+}
+
+impl Observer for Results {
+    fn snapshot(&mut self, snapshot: &Snapshot) -> Result<(), Error> {
+        self.series.write(snapshot)
     }
 }
 
@@ -178,7 +150,7 @@ impl StaticSolution {
 /// A temporary sibling directory that receives the results and becomes the
 /// requested one only when complete ([`Staging::commit`]); dropped uncommitted,
 /// it is removed, so a failed run leaves no partial result.
-pub struct Staging {
+pub(crate) struct Staging {
     dir: PathBuf,
     tmp: PathBuf,
     /// Ancestors of `dir` this staging created (deepest first), removed again
@@ -204,9 +176,16 @@ fn remove_created(created: &[PathBuf]) {
 }
 
 impl Staging {
-    /// Creates the temporary directory next to `dir`.
-    pub fn new(dir: &Path) -> Result<Self, Error> {
-        interrupt::clear_stale(dir);
+    /// Creates the temporary directory next to `dir`, after removing the
+    /// staging directories of killed runs there (said in `notes`).
+    pub(crate) fn new(dir: &Path, notes: &mut Notes) -> Result<Self, Error> {
+        for (path, pid) in interrupt::clear_stale(dir) {
+            notes.push(format!(
+                "note: removed {}, the partial result of an earlier run (process {pid}) that \
+                 was killed",
+                path.display()
+            ));
+        }
         let tmp = temporary_sibling(dir);
         let created = missing_ancestors(&tmp);
         let _ = std::fs::remove_dir_all(&tmp);
@@ -225,12 +204,12 @@ impl Staging {
     }
 
     /// Where files go until the commit.
-    pub fn path(&self) -> &Path {
+    pub(crate) fn path(&self) -> &Path {
         &self.tmp
     }
 
     /// Replaces the requested directory by the temporary one.
-    pub fn commit(mut self) -> Result<(), Error> {
+    pub(crate) fn commit(mut self) -> Result<(), Error> {
         let dir = self.dir.clone();
         check_output_dir(&dir)?;
         let old = dir.with_file_name(format!(".{}.old-{}", file_name(&dir), std::process::id()));
@@ -286,35 +265,27 @@ pub(crate) fn write_points(
     Ok(())
 }
 
-/// Writes every requested output of a static run into `dir`, atomically.
-pub fn write_static(
-    dir: &Path,
+/// Writes every requested output of a static run into `tmp`.
+fn write_static(
+    tmp: &Path,
     scene: &Scene,
-    plan: &Plan,
     solution: &StaticSolution,
     total_seconds: f64,
 ) -> Result<(), Error> {
-    let staging = Staging::new(dir)?;
-    let tmp = staging.path();
-    write_points(tmp, scene, plan, &solution.point_data())?;
+    write_points(tmp, scene, &solution.plan, &solution.point_data())?;
     if scene.output.matrix_market {
         matrix_market::write(tmp, &solution.system)?;
     }
-    summary::write(&tmp.join("summary.json"), scene, solution, total_seconds)?;
-    staging.commit()
+    summary::write(&tmp.join("summary.json"), scene, solution, total_seconds)
 }
 
-/// Writes the final state and the records of a quasi-static run into the
-/// staging directory (which already holds the series' step files), then commits it.
-pub fn write_quasi_static(
-    staging: Staging,
+/// Writes the final state and the records of a quasi-static run into `tmp`.
+fn write_quasi_static(
+    tmp: &Path,
     scene: &Scene,
-    plan: &Plan,
     solution: &QuasiStaticSolution,
-    series: &[(f64, String)],
     total_seconds: f64,
 ) -> Result<(), Error> {
-    let tmp = staging.path();
     let data = PointData {
         disc: &solution.disc,
         u: &solution.u,
@@ -322,13 +293,9 @@ pub fn write_quasi_static(
         stress: None,
         damage: Some(&solution.damage),
     };
-    write_points(tmp, scene, plan, &data)?;
+    write_points(tmp, scene, &solution.plan, &data)?;
     csv::write_load_displacement(&tmp.join("load_displacement.csv"), solution)?;
-    if !series.is_empty() {
-        vtu::write_collection(&tmp.join("series.pvd"), series)?;
-    }
-    summary::write_quasi_static(&tmp.join("summary.json"), scene, solution, total_seconds)?;
-    staging.commit()
+    summary::write_quasi_static(&tmp.join("summary.json"), scene, solution, total_seconds)
 }
 
 /// Checks that `dir` may receive results: it must not exist, or be an empty

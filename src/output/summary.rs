@@ -3,7 +3,9 @@
 use crate::assembly::loads::AppliedLoad;
 use crate::damage::CalibrationReport;
 use crate::drivers::quasi_static::{Outcome, QuasiStaticSolution, ResolveRecord, StepRecord};
-use crate::drivers::static_solve::{Counts, Reaction, StaticSolution, Timings};
+use crate::drivers::setup::Timings;
+use crate::drivers::static_solve::{Counts, StaticSolution};
+use crate::drivers::system::Reaction;
 use crate::error::{Error, NumericalError};
 use crate::scene::Scene;
 use crate::solve::pipeline::Route;
@@ -49,7 +51,7 @@ pub fn write(
     let summary = Summary {
         scene: &scene.name,
         version: env!("CARGO_PKG_VERSION"),
-        model: format!("{:?} {:?}", scene.model, scene.dimension),
+        model: format!("{:?} {:?}", scene.model.kind, scene.model.dimension),
         counts: &s.counts,
         timings: &s.timings,
         total_seconds,
@@ -188,14 +190,7 @@ pub fn write_quasi_static(
         .iter()
         .enumerate()
         .map(|(k, name)| {
-            let best = s
-                .records
-                .iter()
-                .max_by(|a, b| {
-                    crate::vector::magnitude(&a.reactions[k])
-                        .total_cmp(&crate::vector::magnitude(&b.reactions[k]))
-                })
-                .expect("a run has its initial record");
+            let best = s.peak(k).expect("a run has its initial record");
             Peak {
                 name: name.clone(),
                 magnitude: crate::vector::magnitude(&best.reactions[k]),
@@ -217,7 +212,7 @@ pub fn write_quasi_static(
     let summary = QuasiStaticSummary {
         scene: &scene.name,
         version: env!("CARGO_PKG_VERSION"),
-        model: format!("{:?} {:?}", scene.model, scene.dimension),
+        model: format!("{:?} {:?}", scene.model.kind, scene.model.dimension),
         strategy,
         outcome: &s.outcome,
         counts: serde_json::json!({

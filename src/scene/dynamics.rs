@@ -1,84 +1,18 @@
-//! Validation of the explicit-dynamics parts of a scene: `[dynamics]`,
-//! `[[initial_conditions]]`, densities, prescribed velocities and time functions.
+//! Explicit dynamics: `[dynamics]` (Verlet or dynamic relaxation, run length,
+//! time step, damping, tolerances) and `[[initial_conditions]]`; densities,
+//! prescribed velocities and the time functions of supports and loads are
+//! checked here too (stored with their material, support and load).
 //!
 //! Every key here applies to the explicit driver only and is refused, with the
 //! key named, in a scene without `[dynamics]`; within `[dynamics]`, keys of
 //! Verlet are refused for dynamic relaxation and the other way round.
 
-use super::spec::*;
-use super::validate::{aabb, components, positive, Aabb};
+use super::boundary::{time_function, TimeFunction};
+use super::fields::{aabb, components, positive, Aabb};
+use super::spec::{
+    DynamicsMethod, DynamicsSpec, ForceKernel, GaussianSpec, HorizonMode, ModelKind, SceneSpec,
+};
 use crate::error::{num, InputError};
-
-/// A validated function of time `g(t)`.
-#[derive(Debug, Clone, PartialEq)]
-pub enum TimeFunction {
-    /// `g = 1`.
-    Constant,
-    /// `g = min(t/duration, 1)`.
-    Ramp(f64),
-    /// Piecewise linear through `(t, g)` pairs with increasing `t`; constant outside.
-    Table(Vec<(f64, f64)>),
-}
-
-impl TimeFunction {
-    /// `g(t)`.
-    pub fn value(&self, t: f64) -> f64 {
-        match self {
-            TimeFunction::Constant => 1.0,
-            TimeFunction::Ramp(d) => (t / d).clamp(0.0, 1.0),
-            TimeFunction::Table(pts) => {
-                let k = pts.partition_point(|p| p.0 <= t);
-                if k == 0 {
-                    pts[0].1
-                } else if k == pts.len() {
-                    pts[k - 1].1
-                } else {
-                    let ((t0, g0), (t1, g1)) = (pts[k - 1], pts[k]);
-                    g0 + (g1 - g0) * (t - t0) / (t1 - t0)
-                }
-            }
-        }
-    }
-
-    /// `∫₀ᵗ g(s) ds` (a prescribed velocity's displacement); `g` before the
-    /// first table time is the first value.
-    pub fn integral(&self, t: f64) -> f64 {
-        match self {
-            TimeFunction::Constant => t,
-            TimeFunction::Ramp(d) => {
-                if t <= *d {
-                    0.5 * t * t / d
-                } else {
-                    t - 0.5 * d
-                }
-            }
-            TimeFunction::Table(pts) => {
-                let mut sum = 0.0;
-                let mut prev = (0.0, self.value(0.0));
-                let mut knots: Vec<(f64, f64)> = pts
-                    .iter()
-                    .copied()
-                    .filter(|p| p.0 > 0.0 && p.0 < t)
-                    .collect();
-                knots.push((t, self.value(t)));
-                for (tk, gk) in knots {
-                    sum += 0.5 * (prev.1 + gk) * (tk - prev.0);
-                    prev = (tk, gk);
-                }
-                sum
-            }
-        }
-    }
-}
-
-/// What a `[[boundary]]` prescribes.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Motion {
-    /// `u = value · g(t)`.
-    Displacement,
-    /// `v = value · g(t)`, `u = value · ∫g`.
-    Velocity,
-}
 
 /// A validated Gaussian pulse.
 #[derive(Debug, Clone, PartialEq)]
@@ -135,7 +69,7 @@ pub enum RunLength {
 /// gives (an unstable damping: 4.5e8).
 pub const DEFAULT_BALANCE_TOLERANCE: f64 = 0.2;
 
-/// Validated `[dynamics]` with everything the explicit driver needs.
+/// Validated `[dynamics]`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dynamics {
     /// Verlet or relaxation.
@@ -158,173 +92,26 @@ pub struct Dynamics {
     pub record_every: usize,
     /// Verlet: largest relative energy-balance error before the run fails.
     pub balance_tolerance: f64,
-    /// Density of each material (Verlet; empty for relaxation).
-    pub density: Vec<f64>,
-    /// What each boundary prescribes.
-    pub motion: Vec<Motion>,
-    /// Each boundary's time function.
-    pub boundary_time: Vec<TimeFunction>,
-    /// Each load's time function.
-    pub load_time: Vec<TimeFunction>,
-    /// Initial conditions.
-    pub initial: Vec<InitialCondition>,
 }
 
-fn time_function(field: &str, t: &Option<TimeFunctionSpec>) -> Result<TimeFunction, InputError> {
-    let Some(t) = t else {
-        return Ok(TimeFunction::Constant);
-    };
-    let unexpected = |key: &str, present: bool, kind: &str| {
-        if present {
-            Err(InputError::new(
-                format!("{field}.{key}"),
-                format!("does not apply to kind \"{kind}\""),
-            ))
-        } else {
-            Ok(())
-        }
-    };
-    match t.kind {
-        TimeFunctionKind::Constant => {
-            unexpected("duration", t.duration.is_some(), "constant")?;
-            unexpected("times", t.times.is_some(), "constant")?;
-            unexpected("values", t.values.is_some(), "constant")?;
-            Ok(TimeFunction::Constant)
-        }
-        TimeFunctionKind::Ramp => {
-            unexpected("times", t.times.is_some(), "ramp")?;
-            unexpected("values", t.values.is_some(), "ramp")?;
-            let d = t.duration.ok_or_else(|| {
-                InputError::new(
-                    format!("{field}.duration"),
-                    "a ramp needs its duration in s",
-                )
-            })?;
-            positive(&format!("{field}.duration"), d)?;
-            Ok(TimeFunction::Ramp(d))
-        }
-        TimeFunctionKind::Table => {
-            unexpected("duration", t.duration.is_some(), "table")?;
-            let (Some(times), Some(values)) = (&t.times, &t.values) else {
-                return Err(InputError::new(
-                    field,
-                    "a table needs `times` and `values` of the same length",
-                ));
-            };
-            if times.is_empty() || times.len() != values.len() {
-                return Err(InputError::new(
-                    format!("{field}.values"),
-                    format!(
-                        "{} values for {} times: give one value per time, at least one",
-                        values.len(),
-                        times.len()
-                    ),
-                ));
-            }
-            for (k, (&tk, &gk)) in times.iter().zip(values).enumerate() {
-                if !tk.is_finite() || tk < 0.0 || (k > 0 && tk <= times[k - 1]) {
-                    return Err(InputError::new(
-                        format!("{field}.times[{k}]"),
-                        format!(
-                            "{}: times must be finite, ≥ 0 and strictly increasing",
-                            num(tk)
-                        ),
-                    ));
-                }
-                if !gk.is_finite() {
-                    return Err(InputError::new(
-                        format!("{field}.values[{k}]"),
-                        format!("{} is not a finite number", num(gk)),
-                    ));
-                }
-            }
-            Ok(TimeFunction::Table(
-                times.iter().copied().zip(values.iter().copied()).collect(),
-            ))
-        }
-    }
+/// Largest number of explicit steps a scene may ask for.
+pub const MAX_STEPS: usize = 100_000_000;
+
+/// What the dynamics sections give the scene: `[dynamics]`, the initial
+/// conditions, and the time function of each support and each load (stored
+/// with them).
+pub(super) struct Explicit {
+    pub(super) dynamics: Dynamics,
+    pub(super) initial_conditions: Vec<InitialCondition>,
+    pub(super) boundary_time: Vec<TimeFunction>,
+    pub(super) load_time: Vec<TimeFunction>,
 }
 
-fn gaussian(field: &str, g: &GaussianSpec, d: usize) -> Result<Gaussian, InputError> {
-    if g.center.is_empty() || g.center.len() > d {
-        return Err(InputError::new(
-            format!("{field}.center"),
-            format!(
-                "{} components; give 1 to {d} (the axes the distance is measured along)",
-                g.center.len()
-            ),
-        ));
-    }
-    let mut center = [0.0; 3];
-    for (a, &c) in g.center.iter().enumerate() {
-        if !c.is_finite() {
-            return Err(InputError::new(
-                format!("{field}.center[{a}]"),
-                format!("{} is not a finite number", num(c)),
-            ));
-        }
-        center[a] = c;
-    }
-    positive(&format!("{field}.width"), g.width)?;
-    if g.amplitude.len() != d {
-        return Err(InputError::new(
-            format!("{field}.amplitude"),
-            format!("{} components; give {d}", g.amplitude.len()),
-        ));
-    }
-    let mut amplitude = [0.0; 3];
-    for (a, &v) in g.amplitude.iter().enumerate() {
-        if !v.is_finite() {
-            return Err(InputError::new(
-                format!("{field}.amplitude[{a}]"),
-                format!("{} is not a finite number", num(v)),
-            ));
-        }
-        amplitude[a] = v;
-    }
-    Ok(Gaussian {
-        center,
-        axes: g.center.len(),
-        width: g.width,
-        amplitude,
-    })
-}
-
-/// Validates the dynamics parts of `spec`; `None` when the scene has no
-/// `[dynamics]` (then every dynamics-only key is refused).
-pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, InputError> {
+/// Validates the explicit-dynamics parts of `spec`; `None` when the scene has
+/// no `[dynamics]` (then every dynamics-only key is refused).
+pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Explicit>, InputError> {
     let Some(dy) = &spec.dynamics else {
-        let only = "applies to explicit dynamics only (add a [dynamics] section)";
-        if let Some((name, _)) = spec.materials.iter().find(|(_, m)| m.density.is_some()) {
-            return Err(InputError::new(format!("materials.{name}.density"), only));
-        }
-        if !spec.initial_conditions.is_empty() {
-            return Err(InputError::new("initial_conditions", only));
-        }
-        for (k, b) in spec.boundary.iter().enumerate() {
-            if b.velocity.is_some() {
-                return Err(InputError::new(format!("boundary[{k}].velocity"), only));
-            }
-            if b.time_function.is_some() {
-                return Err(InputError::new(
-                    format!("boundary[{k}].time_function"),
-                    only,
-                ));
-            }
-        }
-        for (k, l) in spec.loads.iter().enumerate() {
-            if l.time_function.is_some() {
-                return Err(InputError::new(format!("loads[{k}].time_function"), only));
-            }
-        }
-        if spec.model.horizons == HorizonMode::Traditional {
-            return Err(InputError::new(
-                "model.horizons",
-                "\"traditional\" (forces from a point's own horizon only, with ghost forces) \
-                 is a baseline for explicit dynamics; its tangent is not symmetric and the \
-                 implicit solvers do not take it: use \"dual\" or \"constant\"",
-            ));
-        }
+        static_scene(spec)?;
         return Ok(None);
     };
     if spec.quasi_static.is_some() {
@@ -334,6 +121,58 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
         ));
     }
     let relaxation = dy.method == DynamicsMethod::Relaxation;
+    method_keys(spec, dy, relaxation)?;
+    let length = run_length(dy, relaxation)?;
+    let dynamics = numbers(spec, dy, length)?;
+    densities(spec, relaxation)?;
+    let (boundary_time, load_time) = time_functions(spec)?;
+    let initial_conditions = initial_conditions(spec, d)?;
+    Ok(Some(Explicit {
+        dynamics,
+        initial_conditions,
+        boundary_time,
+        load_time,
+    }))
+}
+
+/// Refuses the keys of explicit dynamics in a scene without `[dynamics]`.
+fn static_scene(spec: &SceneSpec) -> Result<(), InputError> {
+    let only = "applies to explicit dynamics only (add a [dynamics] section)";
+    if let Some((name, _)) = spec.materials.iter().find(|(_, m)| m.density.is_some()) {
+        return Err(InputError::new(format!("materials.{name}.density"), only));
+    }
+    if !spec.initial_conditions.is_empty() {
+        return Err(InputError::new("initial_conditions", only));
+    }
+    for (k, b) in spec.boundary.iter().enumerate() {
+        if b.velocity.is_some() {
+            return Err(InputError::new(format!("boundary[{k}].velocity"), only));
+        }
+        if b.time_function.is_some() {
+            return Err(InputError::new(
+                format!("boundary[{k}].time_function"),
+                only,
+            ));
+        }
+    }
+    for (k, l) in spec.loads.iter().enumerate() {
+        if l.time_function.is_some() {
+            return Err(InputError::new(format!("loads[{k}].time_function"), only));
+        }
+    }
+    if spec.model.horizons == HorizonMode::Traditional {
+        return Err(InputError::new(
+            "model.horizons",
+            "\"traditional\" (forces from a point's own horizon only, with ghost forces) \
+             is a baseline for explicit dynamics; its tangent is not symmetric and the \
+             implicit solvers do not take it: use \"dual\" or \"constant\"",
+        ));
+    }
+    Ok(())
+}
+
+/// Refuses the keys of Verlet in a relaxation and the other way round.
+fn method_keys(spec: &SceneSpec, dy: &DynamicsSpec, relaxation: bool) -> Result<(), InputError> {
     let (method_name, other) = if relaxation {
         ("relaxation", "\"verlet\"")
     } else {
@@ -384,8 +223,12 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
             true,
         )?;
     }
+    Ok(())
+}
 
-    let length = match (dy.steps, dy.end_time) {
+/// `steps` or `end_time`.
+fn run_length(dy: &DynamicsSpec, relaxation: bool) -> Result<RunLength, InputError> {
+    Ok(match (dy.steps, dy.end_time) {
         (Some(_), Some(_)) => {
             return Err(InputError::new(
                 "dynamics.end_time",
@@ -415,7 +258,11 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
                 },
             ))
         }
-    };
+    })
+}
+
+/// The numbers of `[dynamics]`, defaults filled in, with the run length.
+fn numbers(spec: &SceneSpec, dy: &DynamicsSpec, length: RunLength) -> Result<Dynamics, InputError> {
     if let Some(t) = dy.time_step {
         positive("dynamics.time_step", t)?;
     }
@@ -482,8 +329,23 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
             "\"traditional\" is defined for the bond-based model only",
         ));
     }
+    Ok(Dynamics {
+        method: dy.method,
+        kernel: dy.kernel,
+        length,
+        time_step: dy.time_step,
+        safety_factor,
+        force_time_step: dy.force_time_step,
+        damping,
+        tolerance,
+        record_every,
+        balance_tolerance,
+    })
+}
 
-    let mut density = Vec::new();
+/// Verlet needs every material's density (stored with the material);
+/// relaxation uses a fictitious mass and refuses one.
+fn densities(spec: &SceneSpec, relaxation: bool) -> Result<(), InputError> {
     for (name, m) in &spec.materials {
         let f = format!("materials.{name}.density");
         match (m.density, relaxation) {
@@ -499,34 +361,32 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
                     "explicit dynamics needs every material's density in kg/m³",
                 ))
             }
-            (Some(rho), false) => {
-                positive(&f, rho)?;
-                density.push(rho);
-            }
+            (Some(rho), false) => positive(&f, rho)?,
             (None, true) => {}
         }
     }
+    Ok(())
+}
 
-    let mut motion = Vec::new();
-    let mut boundary_time = Vec::new();
-    for (k, b) in spec.boundary.iter().enumerate() {
-        motion.push(if b.velocity.is_some() {
-            Motion::Velocity
-        } else {
-            Motion::Displacement
-        });
-        boundary_time.push(time_function(
-            &format!("boundary[{k}].time_function"),
-            &b.time_function,
-        )?);
-    }
-    let mut load_time = Vec::new();
-    for (k, l) in spec.loads.iter().enumerate() {
-        load_time.push(time_function(
-            &format!("loads[{k}].time_function"),
-            &l.time_function,
-        )?);
-    }
+/// The time function of each support and each load.
+fn time_functions(spec: &SceneSpec) -> Result<(Vec<TimeFunction>, Vec<TimeFunction>), InputError> {
+    let boundary_time = spec
+        .boundary
+        .iter()
+        .enumerate()
+        .map(|(k, b)| time_function(&format!("boundary[{k}].time_function"), &b.time_function))
+        .collect::<Result<_, _>>()?;
+    let load_time = spec
+        .loads
+        .iter()
+        .enumerate()
+        .map(|(k, l)| time_function(&format!("loads[{k}].time_function"), &l.time_function))
+        .collect::<Result<_, _>>()?;
+    Ok((boundary_time, load_time))
+}
+
+/// `[[initial_conditions]]`.
+fn initial_conditions(spec: &SceneSpec, d: usize) -> Result<Vec<InitialCondition>, InputError> {
     let mut initial = Vec::new();
     for (k, ic) in spec.initial_conditions.iter().enumerate() {
         let f = format!("initial_conditions[{k}]");
@@ -570,31 +430,58 @@ pub(super) fn validate(spec: &SceneSpec, d: usize) -> Result<Option<Dynamics>, I
             gaussian,
         });
     }
-    Ok(Some(Dynamics {
-        method: dy.method,
-        kernel: dy.kernel,
-        length,
-        time_step: dy.time_step,
-        safety_factor,
-        force_time_step: dy.force_time_step,
-        damping,
-        tolerance,
-        record_every,
-        balance_tolerance,
-        density,
-        motion,
-        boundary_time,
-        load_time,
-        initial,
-    }))
+    Ok(initial)
 }
 
-/// Largest number of explicit steps a scene may ask for.
-pub const MAX_STEPS: usize = 100_000_000;
+/// A Gaussian pulse of a `d`-dimensional scene.
+fn gaussian(field: &str, g: &GaussianSpec, d: usize) -> Result<Gaussian, InputError> {
+    if g.center.is_empty() || g.center.len() > d {
+        return Err(InputError::new(
+            format!("{field}.center"),
+            format!(
+                "{} components; give 1 to {d} (the axes the distance is measured along)",
+                g.center.len()
+            ),
+        ));
+    }
+    let mut center = [0.0; 3];
+    for (a, &c) in g.center.iter().enumerate() {
+        if !c.is_finite() {
+            return Err(InputError::new(
+                format!("{field}.center[{a}]"),
+                format!("{} is not a finite number", num(c)),
+            ));
+        }
+        center[a] = c;
+    }
+    positive(&format!("{field}.width"), g.width)?;
+    if g.amplitude.len() != d {
+        return Err(InputError::new(
+            format!("{field}.amplitude"),
+            format!("{} components; give {d}", g.amplitude.len()),
+        ));
+    }
+    let mut amplitude = [0.0; 3];
+    for (a, &v) in g.amplitude.iter().enumerate() {
+        if !v.is_finite() {
+            return Err(InputError::new(
+                format!("{field}.amplitude[{a}]"),
+                format!("{} is not a finite number", num(v)),
+            ));
+        }
+        amplitude[a] = v;
+    }
+    Ok(Gaussian {
+        center,
+        axes: g.center.len(),
+        width: g.width,
+        amplitude,
+    })
+}
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::scene::boundary::TimeFunction;
 
     #[test]
     fn time_functions_and_their_integrals() {

@@ -1,165 +1,224 @@
-//! Scenes: parsing (TOML or JSON) and validation into a typed [`Scene`].
+//! Scenes: parsing (TOML or JSON) and validation into a typed [`Scene`],
+//! nested as the file is: one validator per section, called in the order of
+//! the sections a check depends on.
 //!
 //! No numerics happen here. Every check names the offending field with a dotted
 //! path (`regions[1].spacing`) and says what would be valid. Checks that need the
 //! points (a boundary box that selects nothing, a traction face with no point)
 //! are done by the discretisation right after the points exist and before
 //! any bond is built.
+//!
+//! Sections: [`model`] (`[model]`, `[discretization]`), [`material`]
+//! (`[materials]` and their elastic constants), [`body`] (regions, point
+//! files, meshes, holes, cracks), [`boundary`] (supports and loads),
+//! [`output`], [`solver`] (the solver's vocabulary), [`fracture`]
+//! (`[fracture]`, `[quasi_static]`), [`dynamics`] (`[dynamics]`, initial
+//! conditions); [`fields`] holds the checks they share, [`read`] the parsing.
 
-mod dynamics;
+pub mod body;
+pub mod boundary;
+pub mod dynamics;
+pub mod fields;
+pub mod fracture;
 pub mod material;
+pub mod model;
+pub mod output;
+pub mod read;
 pub mod solver;
 mod spec;
-mod validate;
 
-pub use dynamics::{
-    Dynamics, Gaussian, InitialCondition, Motion, RunLength, TimeFunction,
-    MAX_STEPS as MAX_DYNAMICS_STEPS,
-};
+pub use body::{Crack, Hole, HorizonRule, MeshFile, PointFile, Region};
+pub use boundary::{Load, LoadTarget, Motion, Prescribed, Selection, TimeFunction};
+pub use dynamics::{Dynamics, Gaussian, InitialCondition, RunLength};
+pub use fields::Aabb;
+pub use fracture::{FractureSettings, QuasiStatic};
 pub use material::{FractureParameter, Material};
-pub use solver::{Ordering, Precision, SolverMethod, SolverSettings};
+pub use model::{DiscretizationSettings, Model};
+pub use output::{OutputSettings, Probe, Profile};
+pub use read::{load, parse_spec, read_input_file, read_text_file};
+pub use solver::SolverSettings;
 pub use spec::*;
-pub use validate::{
-    bond_stiffness_in_range, length_in_range, Aabb, Crack, FractureSettings, Hole, HorizonRule,
-    Load, LoadTarget, MeshFile, OutputSettings, PointFile, Prescribed, Probe, Profile, QuasiStatic,
-    Region, Scene, Selection, MAX_HORIZON_FACTOR, MAX_LENGTH, MIN_LENGTH,
-};
 
-use crate::error::{Error, InputError};
+use crate::error::InputError;
 use std::path::Path;
 
-/// The scene of `cargo run` without arguments: the 2D bimaterial strip
-/// (validation/bimaterial_bar), coarse enough to run in a second.
-pub const DEFAULT_SCENE: &str = include_str!("../../validation/bimaterial_bar/strip_2d.toml");
+/// A validated scene, nested as the file: everything the numerics need,
+/// nothing they do not.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Scene {
+    /// Name used in reports and as the default output directory.
+    pub name: String,
+    /// `[model]`.
+    pub model: Model,
+    /// `[discretization]`.
+    pub discretization: DiscretizationSettings,
+    /// `[materials]`, indexed by regions and points.
+    pub materials: Vec<Material>,
+    /// `[[regions]]`.
+    pub regions: Vec<Region>,
+    /// `[[point_files]]`.
+    pub point_files: Vec<PointFile>,
+    /// `[[meshes]]`.
+    pub meshes: Vec<MeshFile>,
+    /// `[[holes]]`.
+    pub holes: Vec<Hole>,
+    /// `[[cracks]]`.
+    pub cracks: Vec<Crack>,
+    /// `[[boundary]]`: prescribed displacements (or velocities).
+    pub boundaries: Vec<Prescribed>,
+    /// `[[loads]]`.
+    pub loads: Vec<Load>,
+    /// `[solver]`.
+    pub solver: SolverSettings,
+    /// `[output]`.
+    pub output: OutputSettings,
+    /// `[fracture]` (used by the drivers that break bonds).
+    pub fracture: FractureSettings,
+    /// `[quasi_static]`: a fracture run (None: another driver).
+    pub quasi_static: Option<QuasiStatic>,
+    /// `[dynamics]`: an explicit run (None: another driver).
+    pub dynamics: Option<Dynamics>,
+    /// `[[initial_conditions]]` (explicit runs).
+    pub initial_conditions: Vec<InitialCondition>,
+}
 
-/// Parses scene text; `json` selects JSON instead of TOML.
-pub fn parse_spec(text: &str, json: bool) -> Result<SceneSpec, InputError> {
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    if json {
-        let de = &mut serde_json::Deserializer::from_str(text);
-        serde_path_to_error::deserialize(de).map_err(|e| {
-            let field = path_or_root(&e.path().to_string());
-            InputError::new(field, format!("{} (JSON)", e.inner()))
+impl Scene {
+    /// Spatial dimension `d`.
+    pub fn d(&self) -> usize {
+        self.model.d()
+    }
+
+    /// Validates a raw spec. `base` resolves relative point-file paths;
+    /// `default_name` is used when the scene has no `name`.
+    pub fn try_from_spec(
+        spec: SceneSpec,
+        base: &Path,
+        default_name: &str,
+    ) -> Result<Scene, InputError> {
+        let d = spec.model.dimension.d();
+        let model = model::validate(&spec.model)?;
+        fields::check_horizon_factor(
+            "discretization.horizon_factor",
+            spec.discretization.horizon_factor,
+        )?;
+        let materials = material::validate(&spec)?;
+        let bodies = body::validate(&spec, &materials, model.thickness, base)?;
+        let mut boundaries = (spec.boundary.iter().enumerate())
+            .map(|(k, b)| boundary::boundary(k, b, &spec.boundary[..k], d, &bodies.meshes))
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut loads = (spec.loads.iter().enumerate())
+            .map(|(k, l)| boundary::load(&format!("loads[{k}]"), l, d, &bodies.meshes))
+            .collect::<Result<Vec<_>, _>>()?;
+        let output = output::validate(&spec.output, d)?;
+        let explicit = dynamics::validate(&spec, d)?;
+        let (fracture, quasi_static) =
+            fracture::validate(&spec, &materials, &boundaries, &loads, d)?;
+        let dynamics = explicit.as_ref().map(|e| &e.dynamics);
+        driver_keys(&spec, &materials, &output, quasi_static.is_some(), dynamics)?;
+        let solver = solver::validate(&spec.solver, spec.model.kind)?;
+        let name = match &spec.name {
+            Some(n) => {
+                fields::name("name", n)?;
+                n.clone()
+            }
+            None => fields::sanitize(default_name),
+        };
+        model::late_checks(&spec, &model, &materials, &output)?;
+        let (dynamics, initial_conditions) = match explicit {
+            Some(e) => {
+                // Each support's and load's time function goes with it.
+                let times = boundaries.iter_mut().zip(e.boundary_time);
+                times.for_each(|(b, t)| b.time = t);
+                loads
+                    .iter_mut()
+                    .zip(e.load_time)
+                    .for_each(|(l, t)| l.time = t);
+                (Some(e.dynamics), e.initial_conditions)
+            }
+            None => (None, Vec::new()),
+        };
+        Ok(Scene {
+            name,
+            model,
+            discretization: DiscretizationSettings {
+                volume_correction: spec.discretization.volume_correction,
+                isolated_points: spec.discretization.isolated_points,
+            },
+            materials,
+            regions: bodies.regions,
+            point_files: bodies.point_files,
+            meshes: bodies.meshes,
+            holes: bodies.holes,
+            cracks: bodies.cracks,
+            boundaries,
+            loads,
+            solver,
+            output,
+            fracture,
+            quasi_static,
+            dynamics,
+            initial_conditions,
         })
-    } else {
-        let de = toml::de::Deserializer::parse(text).map_err(|e| toml_error(text, &e))?;
-        serde_path_to_error::deserialize(de).map_err(|e| {
-            let field = path_or_root(&e.path().to_string());
-            InputError::new(field, toml_error(text, e.inner()).message)
-        })
     }
 }
 
-fn path_or_root(path: &str) -> String {
-    if path.trim().is_empty() || path == "." || path == "?" {
-        "scene".to_string()
-    } else {
-        path.to_string()
+/// The keys that apply to one driver only: a relaxation or a linearised run
+/// breaks no bond; the series and the refactorisation threshold need a run
+/// that steps; mixed precision needs a static solve.
+fn driver_keys(
+    spec: &SceneSpec,
+    materials: &[Material],
+    output: &OutputSettings,
+    fracture_run: bool,
+    dynamics: Option<&Dynamics>,
+) -> Result<(), InputError> {
+    if let Some(dy) = dynamics {
+        let breaks = materials.iter().any(|m| m.fracture.is_some());
+        if breaks && dy.method == DynamicsMethod::Relaxation {
+            return Err(InputError::new(
+                "dynamics.method",
+                "dynamic relaxation finds a static answer and breaks no bond: remove the \
+                 fracture parameters, or use [quasi_static] for fracture under load",
+            ));
+        }
+        if breaks && dy.kernel == ForceKernel::Linearised {
+            return Err(InputError::new(
+                "dynamics.kernel",
+                "bond breakage needs the nonlinear kernel (the assembled tangent is frozen)",
+            ));
+        }
+        if spec.solver.refactor_iterations.is_some() {
+            return Err(InputError::new(
+                "solver.refactor_iterations",
+                "applies to quasi-static fracture runs only",
+            ));
+        }
+    } else if !fracture_run {
+        for (key, present) in [
+            ("output.every", output.every.is_some()),
+            ("output.steps", !output.steps.is_empty()),
+        ] {
+            if present {
+                return Err(InputError::new(
+                    key,
+                    "applies to fracture and dynamics runs only (add a [quasi_static] \
+                     or [dynamics] section)",
+                ));
+            }
+        }
+        if spec.solver.refactor_iterations.is_some() {
+            return Err(InputError::new(
+                "solver.refactor_iterations",
+                "applies to fracture runs only (add a [quasi_static] section)",
+            ));
+        }
     }
-}
-
-fn toml_error(text: &str, e: &toml::de::Error) -> InputError {
-    let location = e
-        .span()
-        .map(|span| {
-            let line = text[..span.start.min(text.len())].matches('\n').count() + 1;
-            format!(" (line {line})")
-        })
-        .unwrap_or_default();
-    InputError::new("scene", format!("{}{location}", e.message().trim_end()))
-}
-
-/// Largest scene file read, in bytes.
-const MAX_SCENE_BYTES: u64 = 16 << 20;
-
-/// Largest point file read, in bytes.
-pub const MAX_POINT_FILE_BYTES: u64 = 4 << 30;
-
-/// Reads an input file's bytes: regular files only (a pipe or a device would
-/// hang or never end), at most `max_bytes`. `field` names the input in errors.
-pub fn read_input_file(path: &Path, field: &str, max_bytes: u64) -> Result<Vec<u8>, Error> {
-    use std::io::Read;
-    let meta = std::fs::metadata(path).map_err(|e| Error::io(path, e))?;
-    if !meta.is_file() {
+    if spec.solver.precision == Some(Precision::Mixed) && (fracture_run || dynamics.is_some()) {
         return Err(InputError::new(
-            field,
-            format!(
-                "{} is not a regular file (a directory, pipe or device); give a file",
-                path.display()
-            ),
-        )
-        .into());
+            "solver.precision",
+            "\"mixed\" applies to static solves (fracture runs update the factor exactly, \
+             which needs double precision; explicit runs factorise nothing)",
+        ));
     }
-    if meta.len() > max_bytes {
-        return Err(InputError::new(
-            field,
-            format!(
-                "{} has {} bytes; at most {max_bytes} are read",
-                path.display(),
-                meta.len()
-            ),
-        )
-        .into());
-    }
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|f| f.take(max_bytes + 1).read_to_end(&mut bytes))
-        .map_err(|e| Error::io(path, e))?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(InputError::new(
-            field,
-            format!(
-                "{} grew beyond {max_bytes} bytes while read",
-                path.display()
-            ),
-        )
-        .into());
-    }
-    Ok(bytes)
-}
-
-/// Reads a text input file ([`read_input_file`]) as UTF-8 (UTF-16 is recognised
-/// and named; the parsers skip a leading byte-order mark).
-pub fn read_text_file(path: &Path, field: &str, max_bytes: u64) -> Result<String, Error> {
-    let bytes = read_input_file(path, field, max_bytes)?;
-    let utf16 = bytes.starts_with(&[0xFF, 0xFE])
-        || bytes.starts_with(&[0xFE, 0xFF])
-        || (bytes.len() >= 4 && (bytes[1] == 0 && bytes[3] == 0 || bytes[0] == 0 && bytes[2] == 0));
-    match std::str::from_utf8(&bytes) {
-        Ok(text) => Ok(text.to_string()),
-        Err(_) if utf16 => Err(InputError::new(
-            field,
-            format!(
-                "{} looks like UTF-16 text (byte-order mark or zero bytes between characters); \
-                 save it as UTF-8",
-                path.display()
-            ),
-        )
-        .into()),
-        Err(e) => Err(InputError::new(
-            field,
-            format!(
-                "{} is not valid UTF-8 (first invalid byte at offset {}); save it as UTF-8 text",
-                path.display(),
-                e.valid_up_to()
-            ),
-        )
-        .into()),
-    }
-}
-
-/// Reads, parses and validates a scene file (`.json` is read as JSON, anything else as TOML).
-pub fn load(path: &Path) -> Result<Scene, Error> {
-    let text = read_text_file(path, "scene", MAX_SCENE_BYTES)?;
-    let json = path
-        .extension()
-        .is_some_and(|ext| ext.eq_ignore_ascii_case("json"));
-    let spec = parse_spec(&text, json)?;
-    let base = path.parent().unwrap_or(Path::new("."));
-    let default_name = path.file_stem().map(|s| s.to_string_lossy().into_owned());
-    Ok(Scene::try_from_spec(
-        spec,
-        base,
-        default_name.as_deref().unwrap_or("scene"),
-    )?)
+    Ok(())
 }

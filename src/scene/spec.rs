@@ -3,7 +3,6 @@
 //! Every section rejects unknown keys. Defaults are documented on each field;
 //! [`crate::scene::Scene::try_from_spec`] validates these raw values into a typed scene.
 
-use super::solver::{Ordering, Precision, SolverMethod};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -499,6 +498,56 @@ pub struct LoadSpec {
     /// Explicit dynamics: the load is multiplied by this function of time
     /// (default constant 1).
     pub time_function: Option<TimeFunctionSpec>,
+}
+
+/// Linear solver route (`solver.method`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SolverMethod {
+    /// Sparse Cholesky (symmetric positive definite); the default for the
+    /// bond-based model.
+    #[default]
+    Cholesky,
+    /// Sparse LU of `K` (small problems only: up to 20,000 free unknowns).
+    Lu,
+    /// GMRES on `K`, preconditioned by the Cholesky factor of a symmetric
+    /// surrogate (the bond-based stiffness on the bond pattern, or
+    /// `(K + Kᵀ)/2`); the default for the shear model.
+    Gmres,
+    /// CG on `K` (GMRES for a non-symmetric `K`) preconditioned by a two-level
+    /// cycle (Chebyshev smoothing, a coarse space of the rigid motions of small
+    /// point aggregates): no factor of `K` is stored, memory linear in the points.
+    Iterative,
+}
+
+/// The fill-reducing ordering of the Cholesky factor (`solver.ordering`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Ordering {
+    /// Both analysed; the one whose factorisation needs fewer operations kept
+    /// (nested dissection alone above 5e7 stored entries of `K`).
+    #[default]
+    Auto,
+    /// faer's approximate minimum degree.
+    Amd,
+    /// Geometric nested dissection on the points.
+    NestedDissection,
+}
+
+/// The precision of the Cholesky factor (`solver.precision`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Precision {
+    /// Single precision for large factors (from 1e8 entries, where it halves
+    /// the factorisation time) or when only that fits in memory; double
+    /// otherwise.
+    #[default]
+    Auto,
+    /// Double precision.
+    Double,
+    /// Single-precision factor; double-precision accuracy recovered by CG
+    /// (Cholesky route) or GMRES (shear model) preconditioned by it.
+    Mixed,
 }
 
 /// `[solver]`

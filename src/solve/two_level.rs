@@ -217,8 +217,7 @@ impl TwoLevel {
     /// `Pᵀ r`, by aggregate.
     fn restrict(&self, r: &[f64]) -> Vec<f64> {
         let mut out = vec![0.0; self.coarse_size()];
-        let parts: Vec<&mut [f64]> =
-            super::super::assembly::split_at_offsets(&mut out, &self.coarse_offsets);
+        let parts: Vec<&mut [f64]> = crate::csr::split_at_offsets(&mut out, &self.coarse_offsets);
         parts.into_par_iter().enumerate().for_each(|(a, part)| {
             for &dof in &self.members[self.members_offsets[a]..self.members_offsets[a + 1]] {
                 let row = &self.rows[dof as usize];

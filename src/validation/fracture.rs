@@ -12,8 +12,8 @@
 //! `E = 30 GPa`, `ν = 1/3`, `G₀ = 200 J/m²`. The finite-element reference for
 //! this exact geometry and these grips is in `validation/fracture/fem`.
 
-use crate::drivers::quasi_static::{self, Observer, Snapshot, StateKind, StepRecord};
-use crate::drivers::static_solve;
+use crate::drivers::quasi_static::{self, StateKind, StepRecord};
+use crate::drivers::{self, Observer, Snapshot};
 use crate::error::Error;
 use crate::scene::{parse_spec, Scene};
 use std::fmt::Write;
@@ -679,6 +679,9 @@ struct Booking {
     intact: Vec<bool>,
     /// Grip displacement and reaction at the last critical state.
     critical: Option<(f64, f64)>,
+    /// The critical state and the reaction after the break, until the
+    /// snapshot of the broken state arrives.
+    broken: Option<((f64, f64), f64)>,
     /// `(x of the bond's midpoint, energy)` of every broken bond.
     booked: Vec<(f64, f64)>,
     /// Every event: the crack front after it, its critical grip displacement and
@@ -691,15 +694,22 @@ struct Booking {
 }
 
 impl Observer for Booking {
-    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error> {
+    fn record(&mut self, record: &StepRecord) -> Result<(), Error> {
         // The moving grip is the scene's second boundary set ("top").
         let reaction = record.reactions[1][self.axis];
+        self.broken = None;
         match record.state {
             StateKind::Critical => self.critical = Some((record.displacement, reaction)),
-            StateKind::Broken => {
-                let (Some((u, r_critical)), Some(snap)) = (self.critical.take(), snapshot) else {
-                    return Ok(());
-                };
+            StateKind::Broken => self.broken = self.critical.take().map(|c| (c, reaction)),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// The state after an event's break (every record has a snapshot).
+    fn snapshot(&mut self, snap: &Snapshot) -> Result<(), Error> {
+        if let Some(((u, r_critical), reaction)) = self.broken.take() {
+            {
                 let released = 0.5 * u * (r_critical - reaction);
                 let (x, bonds) = (&snap.disc.points.x, &snap.disc.bonds);
                 let mut midpoints = Vec::new();
@@ -725,7 +735,6 @@ impl Observer for Booking {
                     .extend(midpoints.into_iter().map(|m| (m, share)));
                 self.total += released;
             }
-            _ => {}
         }
         Ok(())
     }
@@ -743,21 +752,22 @@ impl Strip {
         let mut scene = crate::scene::load(&path)?;
         scene.output.every = Some(1);
         let start_time = Instant::now();
-        let prepared = static_solve::prepare(&scene)?;
-        let points = prepared.disc.points.len();
+        let setup = drivers::check(&scene, &mut ())?;
+        let points = setup.disc.points.len();
         let mut booking = Booking {
             axis: match self.loading {
                 Loading::Tension => 1,
                 Loading::Shear => 0,
             },
-            intact: prepared.disc.bonds.intact.clone(),
+            intact: setup.disc.bonds.intact.clone(),
             critical: None,
+            broken: None,
             booked: Vec::new(),
             events: Vec::new(),
             front: f64::NEG_INFINITY,
             total: 0.0,
         };
-        quasi_static::run(&scene, prepared, &mut booking)?;
+        quasi_static::run(&scene, setup, &mut booking)?;
         let h = self.spacing;
         let start = (((self.notch() + 3.0 * self.horizon()) / h).ceil() + 0.25) * h;
         let last = self.length() - self.height().max(4.0 * self.horizon());

@@ -30,8 +30,8 @@
 
 use crate::assembly::dofs::DofMap;
 use crate::assembly::pattern::Pattern;
-use crate::assembly::split_at_offsets;
 use crate::assembly::stiffness::Stiffness;
+use crate::csr::split_at_offsets;
 use crate::damage::{self, Criterion};
 use crate::discretization::Discretization;
 use crate::model::bond_based::BondBased;

@@ -4,7 +4,7 @@
 
 use super::*;
 
-impl<M: Model> Run<'_, M> {
+impl Run<'_> {
     /// Breaks `bonds`; returns how many were intact. Their owners and
     /// neighbours are remembered for [`Run::consequences`].
     pub(super) fn break_bonds(&mut self, bonds: &[usize]) -> usize {

@@ -50,10 +50,9 @@
 //! (bond-based, [`crate::solve::low_rank`]) or iterates with the old factor
 //! as preconditioner (shear model, or when points were newly held).
 
-use super::static_solve::{
-    check_range, layout, patterns, print_notes, reactions, right_hand_side, solver_hints, Prepared,
-    Reaction, Timings,
-};
+use super::setup::{Plan, Setup, Timings};
+use super::system::{check_range, layout, reactions, right_hand_side, Reaction, System};
+use super::{forward, Observer, Progress, Snapshot};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::AppliedLoad;
 use crate::assembly::rigid_modes;
@@ -61,20 +60,17 @@ use crate::assembly::stiffness::{self, Stiffness};
 use crate::damage::{self, CalibrationReport, Criterion};
 use crate::discretization::Discretization;
 use crate::error::{Error, NumericalError};
-use crate::model::bond_based::BondBased;
-use crate::model::shear::Shear;
-use crate::model::{Coupling, Model};
+use crate::model::{AnyModel, Coupling, Model};
 use crate::notes::Notes;
-use crate::scene::{ModelKind, QuasiStatic, Scene, Strategy};
+use crate::scene::{QuasiStatic, Scene, Strategy};
 use crate::solve::low_rank::Term;
-use crate::solve::pipeline::{Pipeline, SolveReport, Solved};
-use crate::solve::Matrices;
+use crate::solve::pipeline::{SolveReport, Solved};
 use serde::Serialize;
 use std::time::Instant;
 
 mod breakage;
+mod resolves;
 mod strategies;
-mod system;
 
 /// Reaction magnitude, relative to its peak, below which the body counts as separated.
 const SEPARATED: f64 = 1e-6;
@@ -184,26 +180,6 @@ impl Outcome {
     }
 }
 
-/// A state handed to observers when the scene asks for a snapshot.
-pub struct Snapshot<'a> {
-    /// Step number.
-    pub step: usize,
-    /// Load factor.
-    pub load_factor: f64,
-    /// Points and bonds (with the current intact flags).
-    pub disc: &'a Discretization,
-    /// Displacements.
-    pub u: &'a [[f64; 3]],
-    /// Damage per point.
-    pub damage: &'a [f64],
-}
-
-/// Watches a run: every record, with a snapshot at the steps the scene's output asks for.
-pub trait Observer {
-    /// Called for every record, in order.
-    fn record(&mut self, record: &StepRecord, snapshot: Option<&Snapshot>) -> Result<(), Error>;
-}
-
 /// Everything a quasi-static run produces.
 pub struct QuasiStaticSolution {
     /// Points and bonds, with the final intact flags.
@@ -245,50 +221,37 @@ pub struct QuasiStaticSolution {
     pub nnz_l: Option<usize>,
     /// Reaction of each constrained set in the final state.
     pub final_reactions: Vec<Reaction>,
+    /// The points the outputs read.
+    pub plan: Plan,
 }
 
-/// Runs the quasi-static fracture analysis of `scene`.
+/// Runs the quasi-static fracture analysis of `scene` from its `setup`;
+/// `observer` sees every record, the snapshots the scene asks for, the
+/// progress and the notes.
 pub fn run(
     scene: &Scene,
-    prepared: Prepared,
+    setup: Setup,
     observer: &mut dyn Observer,
 ) -> Result<QuasiStaticSolution, Error> {
-    match scene.model {
-        ModelKind::BondBased => {
-            let model = BondBased::new(
-                &prepared.disc,
-                scene.dimension,
-                &scene.materials,
-                scene.thickness,
-            );
-            run_with(model, scene, prepared, observer)
-        }
-        ModelKind::Shear => {
-            let model = Shear::new(
-                &prepared.disc,
-                scene.dimension,
-                &scene.materials,
-                scene.gradient_dilatation,
-            )?;
-            run_with(model, scene, prepared, observer)
-        }
-    }
+    let model = AnyModel::new(scene, &setup.disc)?;
+    let mut notes = Notes::default();
+    let result = run_with(model, scene, setup, observer, &mut notes);
+    forward(&mut notes, observer);
+    result
 }
 
 /// The state of a run between solves.
-struct Run<'s, M: Model> {
+struct Run<'s> {
     scene: &'s Scene,
     settings: &'s QuasiStatic,
-    model: M,
+    model: AnyModel,
     disc: Discretization,
     dofs: DofMap,
     f_ext: Vec<[f64; 3]>,
     criterion: Criterion,
-    pipeline: Pipeline,
-    stiffness: Stiffness,
-    /// The bond-based surrogate and its values, while the solver route
-    /// factorises one (kept up to date as bonds break, pinned like `K`).
-    surrogate: Option<(BondBased, Stiffness)>,
+    /// `K`, the surrogate (kept up to date as bonds break, pinned like `K`)
+    /// and the pipeline.
+    system: System,
     /// Notes of the solves not yet handed on.
     notes: Notes,
     /// Free unknowns at λ = 1 for the current bonds.
@@ -318,53 +281,37 @@ struct Run<'s, M: Model> {
     start: Instant,
 }
 
-fn run_with<M: Model>(
-    model: M,
+fn run_with(
+    model: AnyModel,
     scene: &Scene,
-    prepared: Prepared,
+    setup: Setup,
     observer: &mut dyn Observer,
+    notes: &mut Notes,
 ) -> Result<QuasiStaticSolution, Error> {
     let settings = scene.quasi_static.as_ref().expect("a quasi-static scene");
     let start = Instant::now();
-    let Prepared {
+    let Setup {
         disc,
         dofs,
         f_ext,
         loads,
+        plan,
         mut timings,
-    } = prepared;
-    let hints = solver_hints(scene, model.coupling());
-    let (pattern, surrogate) = patterns(&disc, &dofs, model.coupling(), &scene.solver, hints)?;
-    timings.pattern = pattern.1;
-    let mut notes = Notes::default();
-    let analysed = Pipeline::analyse(
-        pattern.0,
-        surrogate,
-        layout(&disc, &dofs),
-        scene.solver,
-        hints,
-        &mut notes,
-    );
-    print_notes(&mut notes);
-    let pipeline = analysed?;
-    timings.symbolic_factorization = pipeline.symbolic_seconds;
+        ..
+    } = setup;
+    let system = System::new(scene, &disc, &dofs, &model, &mut timings, notes);
+    forward(notes, observer);
+    let system = system?;
     let t = Instant::now();
-    let stiffness = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
-    let surrogate = pipeline.surrogate_pattern().map(|p| {
-        let bond_based = BondBased::new(&disc, scene.dimension, &scene.materials, scene.thickness);
-        let values = Stiffness::assemble(&bond_based, &disc, &dofs, p);
-        (bond_based, values)
-    });
-    let diagonal = mean_diagonal(&stiffness, pipeline.pattern());
+    let diagonal = mean_diagonal(&system.stiffness, system.pipeline.pattern());
     let (criterion, calibration) = Criterion::with_report(scene, &disc);
-    timings.assembly = t.elapsed().as_secs_f64();
+    timings.assembly += t.elapsed().as_secs_f64();
     let reference_displacement = scene
         .boundaries
         .iter()
         .flat_map(|b| b.values.iter().flatten().copied())
         .fold(0.0, |m: f64, v| if v.abs() > m.abs() { v } else { m });
-    let n_bonds = disc.bonds.len();
-    let n_points = disc.points.len();
+    let (n_bonds, n_points) = (disc.bonds.len(), disc.points.len());
     let mut run = Run {
         scene,
         settings,
@@ -373,10 +320,8 @@ fn run_with<M: Model>(
         dofs,
         f_ext,
         criterion,
-        pipeline,
-        stiffness,
-        surrogate,
-        notes,
+        system,
+        notes: Notes::default(),
         x: Vec::new(),
         unit_reactions: Vec::new(),
         held: vec![None; n_points],
@@ -405,6 +350,7 @@ fn run_with<M: Model>(
         Strategy::Event => run.events(observer, &mut records)?,
         Strategy::All | Strategy::MostCritical => run.stepped(observer, &mut records)?,
     };
+    forward(&mut run.notes, observer);
     let u = run.displacement(load_factor);
     let damage = damage::damage(&run.disc);
     let final_reactions = run
@@ -415,10 +361,10 @@ fn run_with<M: Model>(
             ..r.clone()
         })
         .collect();
-    let nnz_l = run.pipeline.nnz_factor();
+    let nnz_l = run.system.pipeline.nnz_factor();
     Ok(QuasiStaticSolution {
         set_names: run.dofs.sets.iter().map(|s| s.name.clone()).collect(),
-        nnz_k: run.pipeline.pattern().nnz(),
+        nnz_k: run.system.pipeline.pattern().nnz(),
         dofs_free: run.dofs.n_free(),
         bonds: n_bonds,
         disc: run.disc,
@@ -436,7 +382,19 @@ fn run_with<M: Model>(
         loads,
         nnz_l,
         final_reactions,
+        plan,
     })
+}
+
+impl QuasiStaticSolution {
+    /// The record at which the reaction of constrained set `k` is largest in
+    /// magnitude (the last of equal ones).
+    pub fn peak(&self, k: usize) -> Option<&StepRecord> {
+        self.records.iter().max_by(|a, b| {
+            crate::vector::magnitude(&a.reactions[k])
+                .total_cmp(&crate::vector::magnitude(&b.reactions[k]))
+        })
+    }
 }
 
 /// Largest displacement, force or reaction any state of the run may reach, in
@@ -444,7 +402,7 @@ fn run_with<M: Model>(
 /// double (1.8e308), as the point forces do.
 const MAX_STATE_MAGNITUDE: f64 = 1e250;
 
-impl<M: Model> Run<'_, M> {
+impl Run<'_> {
     /// Refuses a `max_load_factor` whose states cannot be represented: every
     /// state is `λ` times the unit solution (module docs), so `λ_max` times its
     /// largest displacement, reaction or applied force must stay below

@@ -4,7 +4,7 @@
 
 use super::*;
 
-impl<M: Model> Run<'_, M> {
+impl Run<'_> {
     /// The event strategy (module docs). Returns the outcome and the final load factor.
     pub(super) fn events(
         &mut self,
@@ -211,32 +211,40 @@ impl<M: Model> Run<'_, M> {
         }
     }
 
-    /// Hands a record to the observer, with a snapshot when the scene asks for one.
+    /// Hands a record to the observer (with the notes so far and the
+    /// progress), and a snapshot when the scene asks for one.
     pub(super) fn observe(
-        &self,
+        &mut self,
         observer: &mut dyn Observer,
         record: &StepRecord,
     ) -> Result<(), Error> {
+        forward(&mut self.notes, observer);
+        let settings = self.settings;
+        observer.progress(&Progress::Fracture {
+            step: record.step,
+            steps: (settings.strategy != Strategy::Event).then_some(settings.steps),
+            load_factor: record.load_factor,
+            max_load_factor: settings.max_load_factor,
+            broken: record.broken_total,
+        });
+        observer.record(record)?;
         let output = &self.scene.output;
         let due = output.every.is_some_and(|n| record.step % n == 0)
             || output.steps.contains(&record.step);
         // For an event, the snapshot shows the state after the break.
-        let due = due && record.state != StateKind::Critical;
-        if !due {
-            return observer.record(record, None);
+        if !due || record.state == StateKind::Critical {
+            return Ok(());
         }
         let u = self.displacement(record.load_factor);
         let damage = damage::damage(&self.disc);
-        observer.record(
-            record,
-            Some(&Snapshot {
-                step: record.step,
-                load_factor: record.load_factor,
-                disc: &self.disc,
-                u: &u,
-                damage: &damage,
-            }),
-        )
+        observer.snapshot(&Snapshot {
+            step: record.step,
+            timestep: record.load_factor,
+            disc: &self.disc,
+            u: &u,
+            velocity: None,
+            damage: &damage,
+        })
     }
 
     /// Whether the run ends after this state: separated, or past the peak as

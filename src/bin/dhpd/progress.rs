@@ -1,4 +1,5 @@
-//! Progress of a long run (fracture, dynamics) on stderr.
+//! Progress of a long run (fracture, dynamics) on stderr: what the command
+//! line shows of the [`dhpd::Progress`] its observer receives.
 //!
 //! On a terminal: a bar with the position, the run's own numbers and an ETA,
 //! drawn after 2 s (short runs stay silent). Elsewhere (a batch
@@ -14,6 +15,7 @@
 //! `DHPD_PROGRESS_SECONDS` overrides the interval (`0`: a line at every
 //! update, at most one a millisecond; the tests use it).
 
+use dhpd::Progress;
 use indicatif::{ProgressBar, ProgressStyle};
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};
@@ -34,7 +36,7 @@ enum Mode {
 }
 
 /// The progress display of one run.
-pub struct Progress {
+pub struct Display {
     mode: Mode,
     start: Instant,
     /// Number of steps when known (a bar, and `step k/n` in a line).
@@ -43,9 +45,9 @@ pub struct Progress {
     unit: &'static str,
 }
 
-impl Progress {
+impl Display {
     /// Progress of `total` positions (None: unknown) counted as `unit`.
-    pub fn new(total: Option<u64>, unit: &'static str) -> Self {
+    fn new(total: Option<u64>, unit: &'static str) -> Self {
         let mode = if std::io::stderr().is_terminal() {
             Mode::Bar(None)
         } else {
@@ -65,7 +67,7 @@ impl Progress {
 
     /// Reports `position` with the run's own numbers (`message`, built only
     /// when shown) and the fraction of the run done (for the ETA).
-    pub fn update(&mut self, position: u64, fraction: f64, message: impl FnOnce() -> String) {
+    fn update(&mut self, position: u64, fraction: f64, message: impl FnOnce() -> String) {
         let elapsed = self.start.elapsed();
         match &mut self.mode {
             Mode::Lines { interval, next } => {
@@ -133,6 +135,51 @@ impl Progress {
     }
 }
 
+/// Shows `progress` on `display` (created at the first report of a run): every
+/// record of a fracture run, every 16th step of an explicit run (the clock is
+/// read once per 16 steps).
+pub fn show(display: &mut Option<Display>, progress: &Progress) {
+    match *progress {
+        Progress::Fracture {
+            step,
+            steps,
+            load_factor,
+            max_load_factor,
+            broken,
+        } => {
+            let unit = if steps.is_some() { "step" } else { "event" };
+            display
+                .get_or_insert_with(|| Display::new(steps.map(|n| n as u64), unit))
+                .update(step as u64, load_factor / max_load_factor, || {
+                    format!(
+                        "load factor {load_factor:.4e} of {max_load_factor:.4e}, bonds broken {broken}"
+                    )
+                });
+        }
+        Progress::Dynamics {
+            step,
+            steps,
+            time,
+            broken,
+        } if step % 16 == 0 => {
+            display
+                .get_or_insert_with(|| Display::new(Some(steps as u64), "step"))
+                .update(step as u64, step as f64 / steps.max(1) as f64, || {
+                    format!("t = {time:.4e} s, bonds broken {broken}")
+                });
+        }
+        Progress::Relaxation { step, steps } if step % 16 == 0 => {
+            display
+                .get_or_insert_with(|| Display::new(Some(steps as u64), "step"))
+                .update(step as u64, step as f64 / steps.max(1) as f64, || {
+                    "dynamic relaxation (ends at its tolerance, at the latest at the last step)"
+                        .to_string()
+                });
+        }
+        _ => {}
+    }
+}
+
 /// The interval between progress lines: [`PROGRESS_SECONDS`], or
 /// `DHPD_PROGRESS_SECONDS` when it holds a number of seconds ≥ 0 (else a
 /// warning, and the default).
@@ -147,7 +194,7 @@ fn interval_seconds() -> f64 {
             eprintln!(
                 "warning: {PROGRESS_SECONDS_VAR} = \"{}\" is not a number of seconds ≥ 0; \
                  progress lines every {PROGRESS_SECONDS} s",
-                crate::error::echo(&text)
+                dhpd::error::echo(&text)
             );
             PROGRESS_SECONDS
         }

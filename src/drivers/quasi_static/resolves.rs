@@ -4,7 +4,7 @@
 
 use super::*;
 
-impl<M: Model> Run<'_, M> {
+impl Run<'_> {
     /// Displacements at λ = 1 (held points at zero: they do not deform).
     pub(super) fn unit_displacement(&self) -> Vec<[f64; 3]> {
         let mut u = self.dofs.expand(&self.x);
@@ -102,16 +102,21 @@ impl<M: Model> Run<'_, M> {
     /// (`None`: all), pins the held unknowns, checks the refilled columns'
     /// range and returns the right-hand side at λ = 1 (held unknowns at zero).
     fn refill(&mut self, columns: Option<&[bool]>) -> Result<Vec<f64>, Error> {
-        let pattern = self.pipeline.pattern();
+        let pattern = self.system.pipeline.pattern();
         stiffness::fill_columns(
             &self.model,
             &self.disc,
             &self.dofs,
             pattern,
-            &mut self.stiffness.values,
+            &mut self.system.stiffness.values,
             columns,
         );
-        match (&mut self.surrogate, self.pipeline.surrogate_pattern()) {
+        match (
+            &mut self.system.surrogate,
+            self.system.pipeline.surrogate_pattern(),
+        ) {
+            // Just assembled with the system for the first solve.
+            (Some(_), Some(_)) if columns.is_none() => {}
             (Some((model, values)), Some(p)) => stiffness::fill_columns(
                 model,
                 &self.disc,
@@ -144,11 +149,13 @@ impl<M: Model> Run<'_, M> {
                     .collect()
             });
             let dof_columns = dof_columns.as_deref();
-            self.stiffness
+            self.system
+                .stiffness
                 .pin(pattern, &pinned, self.pin_diagonal, dof_columns);
-            if let (Some((_, values)), Some(p)) =
-                (&mut self.surrogate, self.pipeline.surrogate_pattern())
-            {
+            if let (Some((_, values)), Some(p)) = (
+                &mut self.system.surrogate,
+                self.system.pipeline.surrogate_pattern(),
+            ) {
                 values.pin(p, &pinned, self.pin_diagonal, dof_columns);
             }
             for (r, &p) in rhs.iter_mut().zip(&pinned) {
@@ -157,7 +164,13 @@ impl<M: Model> Run<'_, M> {
                 }
             }
         }
-        check_range(&self.stiffness, pattern, &self.dofs, &self.disc, columns)?;
+        check_range(
+            &self.system.stiffness,
+            pattern,
+            &self.dofs,
+            &self.disc,
+            columns,
+        )?;
         Ok(rhs)
     }
 
@@ -170,19 +183,13 @@ impl<M: Model> Run<'_, M> {
         let columns = self.changed_columns(first);
         let rhs = self.refill(columns.as_deref())?;
         let layout = layout(&self.disc, &self.dofs);
-        let m = Matrices {
-            k: &self.stiffness,
-            surrogate: self.surrogate.as_ref().map(|(_, values)| values),
-        };
+        let (pipeline, m) = self.system.parts();
         let notes = &mut self.notes;
         let solved = match terms {
-            _ if first => self.pipeline.solve(layout, m, &rhs, notes),
-            Some(terms) => self
-                .pipeline
-                .resolve_update(layout, m, &rhs, &self.x, terms, notes),
-            None => self.pipeline.resolve(layout, m, &rhs, &self.x, notes),
+            _ if first => pipeline.solve(layout, m, &rhs, notes),
+            Some(terms) => pipeline.resolve_update(layout, m, &rhs, &self.x, terms, notes),
+            None => pipeline.resolve(layout, m, &rhs, &self.x, notes),
         };
-        print_notes(&mut self.notes);
         let Solved { x, report } = solved?;
         self.x = x;
         let u = self.unit_displacement();
