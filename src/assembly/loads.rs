@@ -47,97 +47,12 @@ pub fn external_forces(
     disc: &Discretization,
     loads: &[Load],
 ) -> Result<ExternalForces, InputError> {
-    let (points, d) = (&disc.points, disc.d);
-    let n = points.len();
-    let mut f = vec![[0.0; 3]; n];
+    let mut f = vec![[0.0; 3]; disc.points.len()];
     let mut applied = Vec::with_capacity(loads.len());
     let mut per_load = Vec::with_capacity(loads.len());
     for (k, load) in loads.iter().enumerate() {
-        // This load's own forces (a point may take several facets).
-        let mut own = vec![[0.0; 3]; n];
-        let field = match load.selection {
-            Some(Selection::Group(_)) => format!("loads[{k}].group"),
-            _ => format!("loads[{k}].box"),
-        };
-        let selected = match &load.selection {
-            Some(selection) => groups::select(disc, selection, &field)?,
-            None => (0..n).collect(),
-        };
-        if selected.is_empty() {
-            return Err(InputError::new(
-                field,
-                format!("selects no point (\"{}\")", load.name),
-            ));
-        }
-        let mut total = [0.0; 3];
-        let mut count = 0;
-        match load.target {
-            LoadTarget::Facets => {
-                let Some(Selection::Group(name)) = &load.selection else {
-                    return Err(InputError::new(field, "a facet traction needs a group"));
-                };
-                let facets = groups::facets(disc, name, &field)?;
-                let mut loaded = vec![false; n];
-                for (i, area) in facets {
-                    for c in 0..d {
-                        let fc = load.value[c] * area;
-                        f[i][c] += fc;
-                        own[i][c] += fc;
-                        total[c] += fc;
-                    }
-                    finite(k, &f[i], i)?;
-                    count += usize::from(!loaded[i]);
-                    loaded[i] = true;
-                }
-            }
-            LoadTarget::Volume => {
-                for &i in &selected {
-                    for c in 0..d {
-                        let fc = load.value[c] * points.volume[i];
-                        f[i][c] += fc;
-                        own[i][c] += fc;
-                        total[c] += fc;
-                    }
-                    finite(k, &f[i], i)?;
-                }
-                count = selected.len();
-            }
-            LoadTarget::Face { axis, sign } => {
-                let outer = selected
-                    .iter()
-                    .map(|&i| sign * points.x[i][axis])
-                    .fold(f64::NEG_INFINITY, f64::max);
-                let layer = selected
-                    .iter()
-                    .copied()
-                    .filter(|&i| sign * points.x[i][axis] >= outer - 0.5 * points.spacing[i]);
-                for i in layer {
-                    if !matches!(points.source[i], Source::Region(_)) {
-                        return Err(InputError::new(
-                            format!("loads[{k}].face"),
-                            format!(
-                                "\"{}\" would load point {i} (x = {:?}) of {}: `face` shares \
-                                 the traction by grid spacing, exact only on the points of \
-                                 `regions` (an unstructured point set's layer does not tile the \
-                                 face); load a mesh through its boundary group with `group` \
-                                 instead of `face` (the facets' area, exact), or restrict `box` \
-                                 to region points",
-                                load.name, points.x[i], points.source[i]
-                            ),
-                        ));
-                    }
-                    let share = points.volume[i] / points.spacing[i];
-                    for c in 0..d {
-                        let fc = load.value[c] * share;
-                        f[i][c] += fc;
-                        own[i][c] += fc;
-                        total[c] += fc;
-                    }
-                    finite(k, &f[i], i)?;
-                    count += 1;
-                }
-            }
-        }
+        let (own, count) = load_forces(disc, k, load, &mut f)?;
+        let total = own.total;
         if total.iter().any(|v| !v.is_finite()) {
             return Err(InputError::new(
                 format!("loads[{k}].value"),
@@ -153,7 +68,8 @@ pub fn external_forces(
             total_force: total,
         });
         per_load.push(
-            own.into_iter()
+            own.forces
+                .into_iter()
                 .enumerate()
                 .filter(|(_, v)| v.iter().any(|&c| c != 0.0))
                 .collect(),
@@ -164,6 +80,142 @@ pub fn external_forces(
         per_load,
         applied,
     })
+}
+
+/// The forces of load `k` as they are added.
+struct Own {
+    k: usize,
+    d: usize,
+    /// This load's own force on every point (a point may take several facets).
+    forces: Vec<[f64; 3]>,
+    /// Their sum.
+    total: [f64; 3],
+}
+
+impl Own {
+    /// Adds `value × scale` to point `i`, in `f` (all loads) and here;
+    /// refuses a point force `f` cannot hold.
+    fn add(
+        &mut self,
+        f: &mut [[f64; 3]],
+        i: usize,
+        value: &[f64; 3],
+        scale: f64,
+    ) -> Result<(), InputError> {
+        for c in 0..self.d {
+            let fc = value[c] * scale;
+            f[i][c] += fc;
+            self.forces[i][c] += fc;
+            self.total[c] += fc;
+        }
+        finite(self.k, &f[i], i)
+    }
+}
+
+/// Adds the forces of load `k` into `f`; returns them with the number of
+/// loaded points.
+fn load_forces(
+    disc: &Discretization,
+    k: usize,
+    load: &Load,
+    f: &mut [[f64; 3]],
+) -> Result<(Own, usize), InputError> {
+    let (points, n) = (&disc.points, disc.points.len());
+    let field = match load.selection {
+        Some(Selection::Group(_)) => format!("loads[{k}].group"),
+        _ => format!("loads[{k}].box"),
+    };
+    let selected = match &load.selection {
+        Some(selection) => groups::select(disc, selection, &field)?,
+        None => (0..n).collect(),
+    };
+    if selected.is_empty() {
+        return Err(InputError::new(
+            field,
+            format!("selects no point (\"{}\")", load.name),
+        ));
+    }
+    let mut own = Own {
+        k,
+        d: disc.d,
+        forces: vec![[0.0; 3]; n],
+        total: [0.0; 3],
+    };
+    let count = match load.target {
+        LoadTarget::Facets => {
+            let Some(Selection::Group(name)) = &load.selection else {
+                return Err(InputError::new(field, "a facet traction needs a group"));
+            };
+            let mut loaded = vec![false; n];
+            let mut count = 0;
+            for (i, area) in groups::facets(disc, name, &field)? {
+                own.add(f, i, &load.value, area)?;
+                count += usize::from(!loaded[i]);
+                loaded[i] = true;
+            }
+            count
+        }
+        LoadTarget::Volume => {
+            for &i in &selected {
+                own.add(f, i, &load.value, points.volume[i])?;
+            }
+            selected.len()
+        }
+        LoadTarget::Face { axis, sign } => {
+            let mut count = 0;
+            for i in face_layer(disc, &selected, axis, sign) {
+                check_region_point(disc, k, load, i)?;
+                own.add(f, i, &load.value, points.volume[i] / points.spacing[i])?;
+                count += 1;
+            }
+            count
+        }
+    };
+    Ok((own, count))
+}
+
+/// The points of `selected` whose coordinate `sign · x[axis]` lies within
+/// half their spacing of the largest (the outermost layer of a face).
+fn face_layer<'a>(
+    disc: &'a Discretization,
+    selected: &'a [usize],
+    axis: usize,
+    sign: f64,
+) -> impl Iterator<Item = usize> + 'a {
+    let points = &disc.points;
+    let outer = selected
+        .iter()
+        .map(|&i| sign * points.x[i][axis])
+        .fold(f64::NEG_INFINITY, f64::max);
+    selected
+        .iter()
+        .copied()
+        .filter(move |&i| sign * points.x[i][axis] >= outer - 0.5 * points.spacing[i])
+}
+
+/// Refuses a `face` traction on a point of a mesh or point file (module docs).
+fn check_region_point(
+    disc: &Discretization,
+    k: usize,
+    load: &Load,
+    i: usize,
+) -> Result<(), InputError> {
+    let points = &disc.points;
+    if matches!(points.source[i], Source::Region(_)) {
+        return Ok(());
+    }
+    Err(InputError::new(
+        format!("loads[{k}].face"),
+        format!(
+            "\"{}\" would load point {i} (x = {:?}) of {}: `face` shares \
+             the traction by grid spacing, exact only on the points of \
+             `regions` (an unstructured point set's layer does not tile the \
+             face); load a mesh through its boundary group with `group` \
+             instead of `face` (the facets' area, exact), or restrict `box` \
+             to region points",
+            load.name, points.x[i], points.source[i]
+        ),
+    ))
 }
 
 /// Largest point force accepted, in N: products with the stiffness and sums over

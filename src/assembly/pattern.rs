@@ -74,106 +74,8 @@ impl Pattern {
         coupling: Coupling,
         user_memory_limit: Option<f64>,
     ) -> Result<Self, NumericalError> {
-        let n = disc.points.len();
-        let bonds = &disc.bonds;
-        let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
-        let bytes_per_entry =
-            BYTES_PER_POINT_ENTRY + (dofs.d * dofs.d) as f64 * BYTES_PER_DOF_ENTRY;
-        let max_entries = memory_limit(user_memory_limit)
-            .map_or(usize::MAX, |(limit, _)| (limit / bytes_per_entry) as usize);
-        let found = AtomicUsize::new(0);
-        let charge = |entries: usize| {
-            let total = found.fetch_add(entries, Ordering::Relaxed) + entries;
-            if total <= max_entries {
-                return Ok(());
-            }
-            check_memory(
-                || {
-                    format!(
-                        "the stiffness pattern (more than {total} coupled point pairs, up to {} \
-                         matrix entries, found before the pattern over {n} points was complete)",
-                        total * dofs.d * dofs.d
-                    )
-                },
-                total as f64 * bytes_per_entry,
-                user_memory_limit,
-            )
-        };
-        // A per-thread marker array (one flag per point) deduplicates in O(1).
-        let rows: Vec<Vec<u32>> = (0..n)
-            .into_par_iter()
-            .map_init(
-                || vec![false; n],
-                |seen, q| {
-                    let incoming = bonds.incoming(q);
-                    let mut r: Vec<u32> = Vec::new();
-                    let mut push = |p: u32| {
-                        if !seen[p as usize] {
-                            seen[p as usize] = true;
-                            r.push(p);
-                        }
-                    };
-                    push(q as u32);
-                    family(q).for_each(&mut push);
-                    for &(o, _) in incoming {
-                        push(o);
-                        if coupling == Coupling::Family {
-                            family(o as usize).for_each(&mut push);
-                        }
-                    }
-                    for &p in &r {
-                        seen[p as usize] = false;
-                    }
-                    charge(r.len())?;
-                    r.sort_unstable();
-                    Ok(r)
-                },
-            )
-            .collect::<Result<_, NumericalError>>()?;
-        let mut row_offsets = Vec::with_capacity(n + 1);
-        row_offsets.push(0);
-        for r in &rows {
-            row_offsets.push(row_offsets.last().unwrap() + r.len());
-        }
-        let row_points: Vec<u32> = rows.into_iter().flatten().collect();
-
-        // Degree-of-freedom level: column point q has free_count(q) columns, each
-        // with Σ_{p ∈ rows(q)} free_count(p) rows.
-        let free_count: Vec<usize> = (0..n).map(|i| dofs.free_count(i)).collect();
-        let entries_per_column: Vec<usize> = (0..n)
-            .into_par_iter()
-            .map(|q| {
-                row_points[row_offsets[q]..row_offsets[q + 1]]
-                    .iter()
-                    .map(|&p| free_count[p as usize])
-                    .sum()
-            })
-            .collect();
-        let mut col_ptr = Vec::with_capacity(dofs.n_free() + 1);
-        col_ptr.push(0);
-        let mut point_value_offsets = Vec::with_capacity(n + 1);
-        point_value_offsets.push(0);
-        for q in 0..n {
-            for _ in 0..free_count[q] {
-                col_ptr.push(col_ptr.last().unwrap() + entries_per_column[q]);
-            }
-            point_value_offsets.push(*col_ptr.last().unwrap());
-        }
-        let mut row_idx = vec![0usize; *col_ptr.last().unwrap()];
-        split_at_offsets(&mut row_idx, &point_value_offsets)
-            .into_par_iter()
-            .enumerate()
-            .for_each(|(q, chunk)| {
-                let column: Vec<usize> = row_points[row_offsets[q]..row_offsets[q + 1]]
-                    .iter()
-                    .flat_map(|&p| (0..dofs.d).map(move |r| dofs.free_index[3 * p as usize + r]))
-                    .filter(|&k| k != super::dofs::PRESCRIBED)
-                    .map(|k| k as usize)
-                    .collect();
-                for dest in chunk.chunks_mut(column.len().max(1)) {
-                    dest.copy_from_slice(&column[..dest.len()]);
-                }
-            });
+        let (row_offsets, row_points) = point_rows(disc, dofs.d, coupling, user_memory_limit)?;
+        let (col_ptr, row_idx) = dof_columns(dofs, &row_offsets, &row_points);
         Ok(Pattern {
             row_offsets,
             row_points,
@@ -194,4 +96,121 @@ impl Pattern {
         }
         offsets
     }
+}
+
+/// The point-level pattern (CSR: offsets and sorted rows of each column
+/// point), its entries charged against the memory limit as they are found.
+fn point_rows(
+    disc: &Discretization,
+    d: usize,
+    coupling: Coupling,
+    user_memory_limit: Option<f64>,
+) -> Result<(Vec<usize>, Vec<u32>), NumericalError> {
+    let n = disc.points.len();
+    let bonds = &disc.bonds;
+    let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
+    let bytes_per_entry = BYTES_PER_POINT_ENTRY + (d * d) as f64 * BYTES_PER_DOF_ENTRY;
+    let max_entries = memory_limit(user_memory_limit)
+        .map_or(usize::MAX, |(limit, _)| (limit / bytes_per_entry) as usize);
+    let found = AtomicUsize::new(0);
+    let charge = |entries: usize| {
+        let total = found.fetch_add(entries, Ordering::Relaxed) + entries;
+        if total <= max_entries {
+            return Ok(());
+        }
+        check_memory(
+            || {
+                format!(
+                    "the stiffness pattern (more than {total} coupled point pairs, up to {} \
+                     matrix entries, found before the pattern over {n} points was complete)",
+                    total * d * d
+                )
+            },
+            total as f64 * bytes_per_entry,
+            user_memory_limit,
+        )
+    };
+    // A per-thread marker array (one flag per point) deduplicates in O(1).
+    let rows: Vec<Vec<u32>> = (0..n)
+        .into_par_iter()
+        .map_init(
+            || vec![false; n],
+            |seen, q| {
+                let mut r: Vec<u32> = Vec::new();
+                let mut push = |p: u32| {
+                    if !seen[p as usize] {
+                        seen[p as usize] = true;
+                        r.push(p);
+                    }
+                };
+                push(q as u32);
+                family(q).for_each(&mut push);
+                for &(o, _) in bonds.incoming(q) {
+                    push(o);
+                    if coupling == Coupling::Family {
+                        family(o as usize).for_each(&mut push);
+                    }
+                }
+                for &p in &r {
+                    seen[p as usize] = false;
+                }
+                charge(r.len())?;
+                r.sort_unstable();
+                Ok(r)
+            },
+        )
+        .collect::<Result<_, NumericalError>>()?;
+    let mut row_offsets = Vec::with_capacity(n + 1);
+    row_offsets.push(0);
+    for r in &rows {
+        row_offsets.push(row_offsets.last().unwrap() + r.len());
+    }
+    Ok((row_offsets, rows.into_iter().flatten().collect()))
+}
+
+/// The degree-of-freedom level (CSC column pointers and row indices): column
+/// point `q` has `free_count(q)` columns, each with `Σ_{p ∈ rows(q)}
+/// free_count(p)` rows.
+fn dof_columns(
+    dofs: &DofMap,
+    row_offsets: &[usize],
+    row_points: &[u32],
+) -> (Vec<usize>, Vec<usize>) {
+    let n = row_offsets.len() - 1;
+    let free_count: Vec<usize> = (0..n).map(|i| dofs.free_count(i)).collect();
+    let entries_per_column: Vec<usize> = (0..n)
+        .into_par_iter()
+        .map(|q| {
+            row_points[row_offsets[q]..row_offsets[q + 1]]
+                .iter()
+                .map(|&p| free_count[p as usize])
+                .sum()
+        })
+        .collect();
+    let mut col_ptr = Vec::with_capacity(dofs.n_free() + 1);
+    col_ptr.push(0);
+    let mut point_value_offsets = Vec::with_capacity(n + 1);
+    point_value_offsets.push(0);
+    for q in 0..n {
+        for _ in 0..free_count[q] {
+            col_ptr.push(col_ptr.last().unwrap() + entries_per_column[q]);
+        }
+        point_value_offsets.push(*col_ptr.last().unwrap());
+    }
+    let mut row_idx = vec![0usize; *col_ptr.last().unwrap()];
+    split_at_offsets(&mut row_idx, &point_value_offsets)
+        .into_par_iter()
+        .enumerate()
+        .for_each(|(q, chunk)| {
+            let column: Vec<usize> = row_points[row_offsets[q]..row_offsets[q + 1]]
+                .iter()
+                .flat_map(|&p| (0..dofs.d).map(move |r| dofs.free_index[3 * p as usize + r]))
+                .filter(|&k| k != super::dofs::PRESCRIBED)
+                .map(|k| k as usize)
+                .collect();
+            for dest in chunk.chunks_mut(column.len().max(1)) {
+                dest.copy_from_slice(&column[..dest.len()]);
+            }
+        });
+    (col_ptr, row_idx)
 }

@@ -17,6 +17,7 @@ use crate::notes::Notes;
 use crate::scene::{Dimension, ModelKind, Scene, SolverMethod};
 use crate::solve::cholesky::PivotStats;
 use crate::solve::gmres::GmresReport;
+use crate::solve::pipeline::{Pipeline, SolveReport};
 use crate::solve::route::OrderingReport;
 use serde::Serialize;
 use std::time::Instant;
@@ -87,6 +88,33 @@ pub struct StaticSolution {
     pub system: LinearSystem,
     /// The points the outputs read.
     pub plan: Plan,
+}
+
+impl Counts {
+    /// The sizes of a solve of `pipeline` on `disc`, with what `report` says.
+    fn of(
+        disc: &Discretization,
+        dofs: &DofMap,
+        pipeline: &Pipeline,
+        asymmetry: f64,
+        report: &SolveReport,
+    ) -> Self {
+        Counts {
+            points: disc.points.len(),
+            bonds: disc.bonds.len(),
+            dofs: dofs.n_free(),
+            prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
+            nnz_k: pipeline.pattern().nnz(),
+            solver: pipeline.method(),
+            nnz_l: pipeline.nnz_factor(),
+            ordering: pipeline.ordering,
+            pivots: pipeline.pivot_stats(),
+            asymmetry,
+            refinement_steps: report.refinement_steps,
+            gmres: report.gmres,
+            removed_points: disc.removed_isolated,
+        }
+    }
 }
 
 impl StaticSolution {
@@ -200,22 +228,7 @@ fn solve_with(
     let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
     timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
     let stress = recovered_stress(scene, model, &disc, &u)?;
-    let pipeline = &system.pipeline;
-    let counts = Counts {
-        points: disc.points.len(),
-        bonds: disc.bonds.len(),
-        dofs: dofs.n_free(),
-        prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
-        nnz_k: pipeline.pattern().nnz(),
-        solver: pipeline.method(),
-        nnz_l: pipeline.nnz_factor(),
-        ordering: pipeline.ordering,
-        pivots: pipeline.pivot_stats(),
-        asymmetry,
-        refinement_steps: report.refinement_steps,
-        gmres: report.gmres,
-        removed_points: disc.removed_isolated,
-    };
+    let counts = Counts::of(&disc, &dofs, &system.pipeline, asymmetry, report);
     let residual = report.residual;
     Ok(StaticSolution {
         disc,

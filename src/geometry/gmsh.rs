@@ -440,8 +440,22 @@ fn parse(bytes: &[u8], dim: usize) -> Result<Raw, MeshError> {
         section: "",
     };
     let mut raw = Raw::default();
+    mesh_format(&mut c)?;
+    while let Some(name) = c.section_start()? {
+        section(&mut c, name, &mut raw, dim)?;
+        c.section = "";
+    }
+    if !raw.nodes_seen {
+        return error("the file has no $Nodes section");
+    }
+    if !raw.elements_seen {
+        return error("the file has no $Elements section");
+    }
+    Ok(raw)
+}
 
-    // $MeshFormat
+/// `$MeshFormat`: version 4.1, ASCII or binary (with its endianness), the size of `size_t`.
+fn mesh_format(c: &mut Cursor) -> Result<(), MeshError> {
     match c.section_start() {
         Ok(Some(b"MeshFormat")) => {}
         _ => {
@@ -485,61 +499,56 @@ fn parse(bytes: &[u8], dim: usize) -> Result<Raw, MeshError> {
     }
     c.section_end("MeshFormat")?;
     c.binary = file_type == 1;
+    Ok(())
+}
 
-    while let Some(name) = c.section_start()? {
-        match name {
-            b"PhysicalNames" => {
-                c.section = "$PhysicalNames";
-                if !raw.names.is_empty() {
-                    return c.fail("a second $PhysicalNames section");
-                }
-                physical_names(&mut c, &mut raw)?;
-                c.section_end("PhysicalNames")?;
+/// The section `name` (each read once; unknown sections skipped).
+fn section(c: &mut Cursor, name: &[u8], raw: &mut Raw, dim: usize) -> Result<(), MeshError> {
+    match name {
+        b"PhysicalNames" => {
+            c.section = "$PhysicalNames";
+            if !raw.names.is_empty() {
+                return c.fail("a second $PhysicalNames section");
             }
-            b"Entities" => {
-                c.section = "$Entities";
-                if raw.entities.is_some() {
-                    return c.fail("a second $Entities section");
-                }
-                raw.entities = Some(entities(&mut c)?);
-                c.section_end("Entities")?;
-            }
-            b"PartitionedEntities" => {
-                c.section = "$PartitionedEntities";
-                return c.fail("partitioned meshes are not supported; save the mesh unpartitioned");
-            }
-            b"Nodes" => {
-                c.section = "$Nodes";
-                if raw.nodes_seen {
-                    return c.fail("a second $Nodes section");
-                }
-                raw.nodes_seen = true;
-                nodes(&mut c, &mut raw)?;
-                c.section_end("Nodes")?;
-            }
-            b"Elements" => {
-                c.section = "$Elements";
-                if raw.elements_seen {
-                    return c.fail("a second $Elements section");
-                }
-                raw.elements_seen = true;
-                elements(&mut c, &mut raw, dim)?;
-                c.section_end("Elements")?;
-            }
-            other => {
-                c.section = "";
-                c.skip_section(other)?;
-            }
+            physical_names(c, raw)?;
+            c.section_end("PhysicalNames")?;
         }
-        c.section = "";
+        b"Entities" => {
+            c.section = "$Entities";
+            if raw.entities.is_some() {
+                return c.fail("a second $Entities section");
+            }
+            raw.entities = Some(entities(c)?);
+            c.section_end("Entities")?;
+        }
+        b"PartitionedEntities" => {
+            c.section = "$PartitionedEntities";
+            return c.fail("partitioned meshes are not supported; save the mesh unpartitioned");
+        }
+        b"Nodes" => {
+            c.section = "$Nodes";
+            if raw.nodes_seen {
+                return c.fail("a second $Nodes section");
+            }
+            raw.nodes_seen = true;
+            nodes(c, raw)?;
+            c.section_end("Nodes")?;
+        }
+        b"Elements" => {
+            c.section = "$Elements";
+            if raw.elements_seen {
+                return c.fail("a second $Elements section");
+            }
+            raw.elements_seen = true;
+            elements(c, raw, dim)?;
+            c.section_end("Elements")?;
+        }
+        other => {
+            c.section = "";
+            c.skip_section(other)?;
+        }
     }
-    if !raw.nodes_seen {
-        return error("the file has no $Nodes section");
-    }
-    if !raw.elements_seen {
-        return error("the file has no $Elements section");
-    }
-    Ok(raw)
+    Ok(())
 }
 
 /// `$PhysicalNames` (ASCII text in binary files too).
@@ -895,92 +904,159 @@ impl TagIndex {
     }
 }
 
-fn build(raw: Raw, dim: usize) -> Result<Mesh, MeshError> {
-    // node tag -> index; dense only when the largest tag is small relative to
-    // the number of nodes actually read.
-    let n = raw.node_tags.len();
-    let max_tag = raw.node_tags.iter().copied().max().unwrap_or(0);
-    let index = if max_tag <= 4 * n as u64 + 16 {
+/// The node index of the tags read: dense when the largest tag is small
+/// relative to the number of nodes, else a hash map; a tag seen twice is an error.
+fn node_index(tags: &[u64]) -> Result<TagIndex, MeshError> {
+    let n = tags.len();
+    let max_tag = tags.iter().copied().max().unwrap_or(0);
+    if max_tag <= 4 * n as u64 + 16 {
         let mut v = vec![usize::MAX; max_tag as usize + 1];
-        for (i, &t) in raw.node_tags.iter().enumerate() {
+        for (i, &t) in tags.iter().enumerate() {
             if v[t as usize] != usize::MAX {
                 return error(format!("$Nodes: node tag {t} appears twice"));
             }
             v[t as usize] = i;
         }
-        TagIndex::Dense(v)
+        Ok(TagIndex::Dense(v))
     } else {
         let mut m = HashMap::with_capacity(n);
-        for (i, &t) in raw.node_tags.iter().enumerate() {
+        for (i, &t) in tags.iter().enumerate() {
             if m.insert(t, i).is_some() {
                 return error(format!("$Nodes: node tag {t} appears twice"));
             }
         }
-        TagIndex::Sparse(m)
-    };
-    let lookup = |t: u64, what: &str| {
-        index.get(t).ok_or_else(|| MeshError {
+        Ok(TagIndex::Sparse(m))
+    }
+}
+
+impl TagIndex {
+    /// The index of node `t`, which element `what` refers to.
+    fn lookup(&self, t: u64, what: &str) -> Result<usize, MeshError> {
+        self.get(t).ok_or_else(|| MeshError {
             message: format!("$Elements: {what} refers to node {t}, which is not in $Nodes"),
         })
-    };
+    }
 
-    if dim == 2 {
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for x in &raw.coords {
-            for k in 0..2 {
-                lo[k] = lo[k].min(x[k]);
-                hi[k] = hi[k].max(x[k]);
+    /// The indices of `tags`, the nodes element `what` refers to.
+    fn lookup_all(&self, tags: &[u64], what: &str) -> Result<Vec<usize>, MeshError> {
+        tags.iter().map(|&t| self.lookup(t, what)).collect()
+    }
+}
+
+/// Refuses a 2D mesh with a node off the plane z = 0 (relative to its extent).
+fn check_planar(coords: &[[f64; 3]], tags: &[u64]) -> Result<(), MeshError> {
+    let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+    for x in coords {
+        for k in 0..2 {
+            lo[k] = lo[k].min(x[k]);
+            hi[k] = hi[k].max(x[k]);
+        }
+    }
+    let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(0.0);
+    for (x, t) in coords.iter().zip(tags) {
+        let planar = x[2].abs() <= 1e-10 * extent; // false for NaN too
+        if !planar {
+            return error(format!(
+                "node {t} has z = {:e}: a 2D mesh must lie in the plane z = 0",
+                x[2]
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The physical groups while the elements are read: named ones and those
+/// the entities use, with the nodes each collects.
+struct Groups {
+    list: Vec<PhysicalGroup>,
+    index: HashMap<(usize, i32), usize>,
+    entities: HashMap<(usize, i32), Vec<i32>>,
+    nodes: Vec<Vec<usize>>,
+}
+
+impl Groups {
+    fn new(
+        names: &BTreeMap<(usize, i32), String>,
+        entities: HashMap<(usize, i32), Vec<i32>>,
+    ) -> Self {
+        let mut keys: BTreeMap<(usize, i32), String> = names.clone();
+        for (&(d, _), phys) in &entities {
+            for &p in phys {
+                keys.entry((d, p)).or_default();
             }
         }
-        let extent = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(0.0);
-        for (x, t) in raw.coords.iter().zip(&raw.node_tags) {
-            let planar = x[2].abs() <= 1e-10 * extent; // false for NaN too
-            if !planar {
-                return error(format!(
-                    "node {t} has z = {:e}: a 2D mesh must lie in the plane z = 0",
-                    x[2]
-                ));
-            }
+        let index: HashMap<(usize, i32), usize> =
+            keys.keys().enumerate().map(|(i, &k)| (k, i)).collect();
+        let list: Vec<PhysicalGroup> = keys
+            .into_iter()
+            .map(|((d, tag), name)| PhysicalGroup {
+                dim: d,
+                tag,
+                name,
+                nodes: vec![],
+                cells: vec![],
+                facets: vec![],
+            })
+            .collect();
+        let nodes = vec![vec![]; list.len()];
+        Groups {
+            list,
+            index,
+            entities,
+            nodes,
         }
     }
 
-    // physical groups: named ones and those used by entities
-    let entities = raw.entities.unwrap_or_default();
-    let mut keys: BTreeMap<(usize, i32), String> = raw.names.clone();
-    for (&(d, _), phys) in &entities {
-        for &p in phys {
-            keys.entry((d, p)).or_default();
-        }
-    }
-    let group_index: HashMap<(usize, i32), usize> =
-        keys.keys().enumerate().map(|(i, &k)| (k, i)).collect();
-    let mut groups: Vec<PhysicalGroup> = keys
-        .into_iter()
-        .map(|((d, tag), name)| PhysicalGroup {
-            dim: d,
-            tag,
-            name,
-            nodes: vec![],
-            cells: vec![],
-            facets: vec![],
-        })
-        .collect();
-    let have_entities = !entities.is_empty();
-    let groups_of = |d: usize, etag: i32, what: &str| -> Result<Vec<usize>, MeshError> {
-        match entities.get(&(d, etag)) {
+    /// The groups of entity `(d, etag)`, which element `what` belongs to.
+    fn of(&self, d: usize, etag: i32, what: &str) -> Result<Vec<usize>, MeshError> {
+        match self.entities.get(&(d, etag)) {
             Some(phys) => {
-                let mut g: Vec<usize> = phys.iter().map(|&p| group_index[&(d, p)]).collect();
+                let mut g: Vec<usize> = phys.iter().map(|&p| self.index[&(d, p)]).collect();
                 g.sort_unstable();
                 g.dedup();
                 Ok(g)
             }
-            None if have_entities => error(format!(
+            None if !self.entities.is_empty() => error(format!(
                 "$Elements: {what} belongs to entity ({d}, {etag}), which is not in $Entities"
             )),
             None => Ok(vec![]),
         }
-    };
+    }
 
+    /// The groups with their nodes, sorted.
+    fn finish(mut self) -> Vec<PhysicalGroup> {
+        for (g, mut nodes) in self.list.iter_mut().zip(self.nodes) {
+            nodes.sort_unstable();
+            nodes.dedup();
+            g.nodes = nodes;
+        }
+        self.list
+    }
+}
+
+fn build(raw: Raw, dim: usize) -> Result<Mesh, MeshError> {
+    let index = node_index(&raw.node_tags)?;
+    if dim == 2 {
+        check_planar(&raw.coords, &raw.node_tags)?;
+    }
+    let mut groups = Groups::new(&raw.names, raw.entities.clone().unwrap_or_default());
+    let cells = read_cells(&raw, dim, &index, &mut groups)?;
+    read_lower(&raw, dim, &index, &mut groups)?;
+    Ok(Mesh {
+        nodes: raw.coords,
+        node_tag: raw.node_tags,
+        cells,
+        groups: groups.finish(),
+    })
+}
+
+/// The cells (elements of the mesh's dimension): nodes, centroid, measure, groups.
+fn read_cells(
+    raw: &Raw,
+    dim: usize,
+    index: &TagIndex,
+    groups: &mut Groups,
+) -> Result<MeshCells, MeshError> {
     let mut cells = MeshCells {
         dim,
         ..Default::default()
@@ -1002,15 +1078,11 @@ fn build(raw: Raw, dim: usize) -> Result<Mesh, MeshError> {
     cells.measure.reserve(count);
     cells.nodes.reserve(count);
     cells.groups.reserve(count);
-    let mut group_nodes: Vec<Vec<usize>> = vec![vec![]; groups.len()];
     let mut entity_groups: HashMap<i32, Vec<usize>> = HashMap::new();
     for (ci, &(tag, etag, etype, off)) in raw.cells.iter().enumerate() {
         let nn = element_type(etype).map_or(0, |t| t.2);
         let what = format!("element {tag}");
-        let idx: Vec<usize> = raw.cell_nodes[off..off + nn]
-            .iter()
-            .map(|&t| lookup(t, &what))
-            .collect::<Result<_, _>>()?;
+        let idx = index.lookup_all(&raw.cell_nodes[off..off + nn], &what)?;
         let mut sorted = idx.clone();
         sorted.sort_unstable();
         if sorted.windows(2).any(|w| w[0] == w[1]) {
@@ -1025,14 +1097,14 @@ fn build(raw: Raw, dim: usize) -> Result<Mesh, MeshError> {
         let g = match entity_groups.get(&etag) {
             Some(g) => g.clone(),
             None => {
-                let g = groups_of(dim, etag, &what)?;
+                let g = groups.of(dim, etag, &what)?;
                 entity_groups.insert(etag, g.clone());
                 g
             }
         };
         for &gi in &g {
-            groups[gi].cells.push(ci);
-            group_nodes[gi].extend_from_slice(&idx);
+            groups.list[gi].cells.push(ci);
+            groups.nodes[gi].extend_from_slice(&idx);
         }
         cells.element_tag.push(tag);
         cells.centroid.push(c);
@@ -1040,36 +1112,33 @@ fn build(raw: Raw, dim: usize) -> Result<Mesh, MeshError> {
         cells.nodes.push(idx);
         cells.groups.push(g);
     }
+    Ok(cells)
+}
+
+/// The lower-dimensional elements: their nodes join their groups, and those
+/// of dimension `dim − 1` are the groups' facets.
+fn read_lower(
+    raw: &Raw,
+    dim: usize,
+    index: &TagIndex,
+    groups: &mut Groups,
+) -> Result<(), MeshError> {
     let mut lower: Vec<_> = raw.lower.iter().collect();
     lower.sort_by_key(|(k, _)| **k);
     for (&(d, etag), elements) in lower {
         let Some((first, _)) = elements.first() else {
             continue;
         };
-        let g = groups_of(d, etag, &format!("element {first}"))?;
+        let g = groups.of(d, etag, &format!("element {first}"))?;
         for (tag, tags) in elements {
-            let what = format!("element {tag}");
-            let idx: Vec<usize> = tags
-                .iter()
-                .map(|&t| lookup(t, &what))
-                .collect::<Result<_, _>>()?;
+            let idx = index.lookup_all(tags, &format!("element {tag}"))?;
             for &gi in &g {
-                group_nodes[gi].extend_from_slice(&idx);
+                groups.nodes[gi].extend_from_slice(&idx);
                 if d + 1 == dim {
-                    groups[gi].facets.push(idx.clone());
+                    groups.list[gi].facets.push(idx.clone());
                 }
             }
         }
     }
-    for (g, mut nodes) in groups.iter_mut().zip(group_nodes) {
-        nodes.sort_unstable();
-        nodes.dedup();
-        g.nodes = nodes;
-    }
-    Ok(Mesh {
-        nodes: raw.coords,
-        node_tag: raw.node_tags,
-        cells,
-        groups,
-    })
+    Ok(())
 }

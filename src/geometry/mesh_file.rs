@@ -71,7 +71,6 @@ pub fn import(
     let mesh = gmsh::read_msh(&bytes, d)
         .map_err(|e| InputError::new(&field, format!("{}: {e}", file.path.display())))?;
     drop(bytes);
-    let at = |msg: String| InputError::new(&file.field, format!("{}: {msg}", file.path.display()));
     for (group, _) in &file.groups {
         if !mesh.groups.iter().any(|g| g.dim == d && &g.name == group) {
             return Err(InputError::new(
@@ -85,52 +84,9 @@ pub fn import(
             .into());
         }
     }
-    let cells = &mesh.cells;
-    let mut points = Vec::with_capacity(cells.measure.len());
-    for c in 0..cells.measure.len() {
-        let mut material = None;
-        for &g in &cells.groups[c] {
-            let name = &mesh.groups[g].name;
-            if let Some(&(_, m)) = file.groups.iter().find(|(group, _)| group == name) {
-                if material.is_some_and(|old| old != m) {
-                    return Err(at(format!(
-                        "element {} is in two groups mapped to different materials",
-                        cells.element_tag[c]
-                    ))
-                    .into());
-                }
-                material = Some(m);
-            }
-        }
-        let material = material.or(file.material).ok_or_else(|| {
-            at(format!(
-                "element {} is in no group of `groups` and `material` is not given",
-                cells.element_tag[c]
-            ))
-        })?;
-        let measure = cells.measure[c];
-        let spacing = measure.powf(1.0 / d as f64);
-        let volume = measure * if d == 2 { thickness } else { 1.0 };
-        if !(volume.is_finite() && volume > 0.0 && spacing > 0.0) {
-            return Err(at(format!(
-                "element {} has a measure {measure:e} outside the floating-point range of volumes",
-                cells.element_tag[c]
-            ))
-            .into());
-        }
-        points.push(RawPoint {
-            x: cells.centroid[c],
-            volume,
-            spacing,
-            horizon: file.horizon_factor * spacing,
-            material: material as u32,
-            source: Source::Mesh {
-                mesh: index as u32,
-                cell: c as u32,
-                element: cells.element_tag[c],
-            },
-        });
-    }
+    let points = (0..mesh.cells.measure.len())
+        .map(|c| cell_point(&mesh, file, index, c, d, thickness))
+        .collect::<Result<Vec<_>, _>>()?;
     let node_cells = node_cells(&mesh);
     let groups = mesh
         .groups
@@ -153,6 +109,60 @@ pub fn import(
         })
         .collect();
     Ok(ImportedMesh { points, groups })
+}
+
+/// The point of cell `c`: at its centroid, with its measure (times the
+/// thickness in 2D), the material of its groups or the file's.
+fn cell_point(
+    mesh: &gmsh::Mesh,
+    file: &MeshFile,
+    index: usize,
+    c: usize,
+    d: usize,
+    thickness: f64,
+) -> Result<RawPoint, InputError> {
+    let cells = &mesh.cells;
+    let at = |msg: String| InputError::new(&file.field, format!("{}: {msg}", file.path.display()));
+    let mut material = None;
+    for &g in &cells.groups[c] {
+        let name = &mesh.groups[g].name;
+        if let Some(&(_, m)) = file.groups.iter().find(|(group, _)| group == name) {
+            if material.is_some_and(|old| old != m) {
+                return Err(at(format!(
+                    "element {} is in two groups mapped to different materials",
+                    cells.element_tag[c]
+                )));
+            }
+            material = Some(m);
+        }
+    }
+    let material = material.or(file.material).ok_or_else(|| {
+        at(format!(
+            "element {} is in no group of `groups` and `material` is not given",
+            cells.element_tag[c]
+        ))
+    })?;
+    let measure = cells.measure[c];
+    let spacing = measure.powf(1.0 / d as f64);
+    let volume = measure * if d == 2 { thickness } else { 1.0 };
+    if !(volume.is_finite() && volume > 0.0 && spacing > 0.0) {
+        return Err(at(format!(
+            "element {} has a measure {measure:e} outside the floating-point range of volumes",
+            cells.element_tag[c]
+        )));
+    }
+    Ok(RawPoint {
+        x: cells.centroid[c],
+        volume,
+        spacing,
+        horizon: file.horizon_factor * spacing,
+        material: material as u32,
+        source: Source::Mesh {
+            mesh: index as u32,
+            cell: c as u32,
+            element: cells.element_tag[c],
+        },
+    })
 }
 
 /// The names of the mesh's named groups of dimension `dim`.

@@ -185,22 +185,7 @@ pub fn write_quasi_static(
     s: &QuasiStaticSolution,
     total_seconds: f64,
 ) -> Result<(), Error> {
-    let peaks = s
-        .set_names
-        .iter()
-        .enumerate()
-        .map(|(k, name)| {
-            let best = s.peak(k).expect("a run has its initial record");
-            Peak {
-                name: name.clone(),
-                magnitude: crate::vector::magnitude(&best.reactions[k]),
-                force: best.reactions[k],
-                step: best.step,
-                load_factor: best.load_factor,
-                displacement: best.displacement,
-            }
-        })
-        .collect();
+    let peaks = peaks(s);
     let route = |r: Route| -> Vec<&ResolveRecord> {
         s.solves.iter().filter(|x| x.report.route == r).collect()
     };
@@ -238,7 +223,32 @@ pub fn write_quasi_static(
     let text = serde_json::to_string_pretty(&summary).map_err(|e| NumericalError::NonFinite {
         what: format!("summary ({e})"),
     })?;
-    // serde_json would write a non-finite number as null: refuse instead.
+    check_finite(s)?;
+    super::write_file(path, &text)
+}
+
+/// The peak reaction of every constrained set.
+fn peaks(s: &QuasiStaticSolution) -> Vec<Peak> {
+    s.set_names
+        .iter()
+        .enumerate()
+        .map(|(k, name)| {
+            let best = s.peak(k).expect("a run has its initial record");
+            Peak {
+                name: name.clone(),
+                magnitude: crate::vector::magnitude(&best.reactions[k]),
+                force: best.reactions[k],
+                step: best.step,
+                load_factor: best.load_factor,
+                displacement: best.displacement,
+            }
+        })
+        .collect()
+}
+
+/// Refuses a non-finite number in the records or the solves (serde_json
+/// would write it as null).
+fn check_finite(s: &QuasiStaticSolution) -> Result<(), Error> {
     let bad = s
         .records
         .iter()
@@ -272,5 +282,5 @@ pub fn write_quasi_static(
         }
         .into());
     }
-    super::write_file(path, &text)
+    Ok(())
 }

@@ -355,6 +355,78 @@ fn round_down(v: f64) -> f32 {
     }
 }
 
+/// The pairs of `disc`'s bonds by row (CSR `start`), each with the bond owned
+/// by the row's point and the one owned by the other (or [`NONE`]). Dual
+/// horizons: one entry per pair of points sharing a bond in either direction,
+/// in the row of the smaller index; traditional: one entry per owned bond, in
+/// its owner's row.
+fn pairs(disc: &Discretization, traditional: bool) -> (Vec<usize>, Vec<Pair>, Vec<u32>, Vec<u32>) {
+    let (n, bonds, p) = (disc.points.len(), &disc.bonds, &disc.points);
+    // (row, other point, owned by the row's point?, bond), sorted.
+    let mut items: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(bonds.len());
+    for i in 0..n {
+        for b in bonds.owned_by(i) {
+            let j = bonds.neighbour[b];
+            let (row, other) = if traditional || (i as u32) < j {
+                (i as u32, j)
+            } else {
+                (j, i as u32)
+            };
+            items.push((row, other, row == i as u32, b as u32));
+        }
+    }
+    items.par_sort_unstable_by_key(|t| (t.0, t.1, !t.2));
+    let mut start = vec![0usize; n + 1];
+    let (mut pairs, mut owned, mut incoming) = (Vec::new(), Vec::new(), Vec::new());
+    let mut k = 0;
+    while k < items.len() {
+        let (row, other) = (items[k].0, items[k].1);
+        let (mut o, mut inc) = (NONE, NONE);
+        while k < items.len() && items[k].0 == row && items[k].1 == other {
+            if items[k].2 {
+                o = items[k].3;
+            } else {
+                inc = items[k].3;
+            }
+            k += 1;
+        }
+        start[row as usize + 1] += 1;
+        let d = crate::vector::sub(&p.x[other as usize], &p.x[row as usize]);
+        pairs.push(Pair {
+            weight: 0.0,
+            length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
+            limit: f32::INFINITY,
+            neighbour: other,
+        });
+        owned.push(o);
+        incoming.push(inc);
+    }
+    for i in 0..n {
+        start[i + 1] += start[i];
+    }
+    (start, pairs, owned, incoming)
+}
+
+/// Contiguous blocks of rows holding about the same number of pairs each
+/// ([`BLOCKS`] of them), each with its force buffer.
+fn blocks(start: &[usize], pairs: usize) -> Vec<Block> {
+    let n = start.len() - 1;
+    let per_block = pairs.div_ceil(BLOCKS).max(1);
+    let mut blocks = Vec::new();
+    let mut first = 0;
+    for i in 0..n {
+        if start[i + 1] - start[first] >= per_block || i + 1 == n {
+            blocks.push(Block {
+                rows: first..i + 1,
+                force: vec![[0.0; 3]; n],
+                flagged: Vec::new(),
+            });
+            first = i + 1;
+        }
+    }
+    blocks
+}
+
 impl PairKernel {
     /// Runs the force loop on `simd` (for comparisons); false, and no change,
     /// when this CPU does not offer it.
@@ -378,73 +450,17 @@ impl PairKernel {
     ) -> Self {
         let n = disc.points.len();
         let bonds = &disc.bonds;
-        let p = &disc.points;
         let mut bond_weight = vec![0.0; bonds.len()];
         for i in 0..n {
             for b in bonds.owned_by(i) {
                 bond_weight[b] = model.bond_weight(&disc, i, b);
             }
         }
-        // (row, other point, owned by the row's point?, bond), sorted.
-        let mut items: Vec<(u32, u32, bool, u32)> = Vec::with_capacity(bonds.len());
-        for i in 0..n {
-            for b in bonds.owned_by(i) {
-                let j = bonds.neighbour[b];
-                let (row, other) = if traditional || (i as u32) < j {
-                    (i as u32, j)
-                } else {
-                    (j, i as u32)
-                };
-                items.push((row, other, row == i as u32, b as u32));
-            }
-        }
-        items.par_sort_unstable_by_key(|t| (t.0, t.1, !t.2));
-        let mut start = vec![0usize; n + 1];
-        let (mut pairs, mut owned, mut incoming) = (Vec::new(), Vec::new(), Vec::new());
-        let mut k = 0;
-        while k < items.len() {
-            let (row, other) = (items[k].0, items[k].1);
-            let (mut o, mut inc) = (NONE, NONE);
-            while k < items.len() && items[k].0 == row && items[k].1 == other {
-                if items[k].2 {
-                    o = items[k].3;
-                } else {
-                    inc = items[k].3;
-                }
-                k += 1;
-            }
-            start[row as usize + 1] += 1;
-            let d = crate::vector::sub(&p.x[other as usize], &p.x[row as usize]);
-            pairs.push(Pair {
-                weight: 0.0,
-                length: (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt(),
-                limit: f32::INFINITY,
-                neighbour: other,
-            });
-            owned.push(o);
-            incoming.push(inc);
-        }
-        for i in 0..n {
-            start[i + 1] += start[i];
-        }
+        let (start, pairs, owned, incoming) = pairs(&disc, traditional);
         let blocks = if traditional {
             Vec::new()
         } else {
-            // Contiguous rows holding about the same number of pairs each.
-            let per_block = pairs.len().div_ceil(BLOCKS).max(1);
-            let mut blocks = Vec::new();
-            let mut first = 0;
-            for i in 0..n {
-                if start[i + 1] - start[first] >= per_block || i + 1 == n {
-                    blocks.push(Block {
-                        rows: first..i + 1,
-                        force: vec![[0.0; 3]; n],
-                        flagged: Vec::new(),
-                    });
-                    first = i + 1;
-                }
-            }
-            blocks
+            blocks(&start, pairs.len())
         };
         let mut kernel = PairKernel {
             disc,

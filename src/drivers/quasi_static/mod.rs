@@ -306,39 +306,16 @@ fn run_with(
     let diagonal = mean_diagonal(&system.stiffness, system.pipeline.pattern());
     let (criterion, calibration) = Criterion::with_report(scene, &disc);
     timings.assembly += t.elapsed().as_secs_f64();
-    let reference_displacement = scene
-        .boundaries
-        .iter()
-        .flat_map(|b| b.values.iter().flatten().copied())
-        .fold(0.0, |m: f64, v| if v.abs() > m.abs() { v } else { m });
-    let (n_bonds, n_points) = (disc.bonds.len(), disc.points.len());
-    let mut run = Run {
+    let mut run = Run::new(
         scene,
-        settings,
         model,
-        disc,
-        dofs,
-        f_ext,
+        (disc, dofs, f_ext),
         criterion,
         system,
-        notes: Notes::default(),
-        x: Vec::new(),
-        unit_reactions: Vec::new(),
-        held: vec![None; n_points],
-        pin_diagonal: diagonal,
-        ratios: vec![0.0; n_bonds],
-        broken_total: 0,
-        pending: 0,
-        touched: Vec::new(),
-        recent: Vec::new(),
-        newly_held: Vec::new(),
-        rhs: Vec::new(),
-        peak_reaction: 0.0,
-        reference_displacement,
-        solves: Vec::new(),
-        log: calibration.notes(),
-        start,
-    };
+        diagonal,
+    );
+    run.log = calibration.notes();
+    run.start = start;
     run.solve(0, true)?;
     run.check_load_factor_range()?;
     timings.numeric_factorization = run.solves[0].report.factor_seconds;
@@ -351,39 +328,110 @@ fn run_with(
         Strategy::All | Strategy::MostCritical => run.stepped(observer, &mut records)?,
     };
     forward(&mut run.notes, observer);
-    let u = run.displacement(load_factor);
-    let damage = damage::damage(&run.disc);
-    let final_reactions = run
-        .unit_reactions
-        .iter()
-        .map(|r| Reaction {
-            force: r.force.map(|f| load_factor * f),
-            ..r.clone()
-        })
-        .collect();
-    let nnz_l = run.system.pipeline.nnz_factor();
-    Ok(QuasiStaticSolution {
-        set_names: run.dofs.sets.iter().map(|s| s.name.clone()).collect(),
-        nnz_k: run.system.pipeline.pattern().nnz(),
-        dofs_free: run.dofs.n_free(),
-        bonds: n_bonds,
-        disc: run.disc,
-        dofs: run.dofs,
-        u,
-        damage,
-        load_factor,
-        reference_displacement,
+    let end = End {
         records,
-        solves: run.solves,
-        log: run.log,
-        calibration,
         outcome,
+        load_factor,
+        calibration,
         timings,
         loads,
-        nnz_l,
-        final_reactions,
         plan,
-    })
+    };
+    Ok(run.solution(end))
+}
+
+/// How a run ended, and what it carries to its solution.
+struct End {
+    records: Vec<StepRecord>,
+    outcome: Outcome,
+    load_factor: f64,
+    calibration: CalibrationReport,
+    timings: Timings,
+    loads: Vec<AppliedLoad>,
+    plan: Plan,
+}
+
+impl<'s> Run<'s> {
+    /// The state before the first solve.
+    fn new(
+        scene: &'s Scene,
+        model: AnyModel,
+        (disc, dofs, f_ext): (Discretization, DofMap, Vec<[f64; 3]>),
+        criterion: Criterion,
+        system: System,
+        pin_diagonal: f64,
+    ) -> Self {
+        let reference_displacement = scene
+            .boundaries
+            .iter()
+            .flat_map(|b| b.values.iter().flatten().copied())
+            .fold(0.0, |m: f64, v| if v.abs() > m.abs() { v } else { m });
+        let (n_bonds, n_points) = (disc.bonds.len(), disc.points.len());
+        Run {
+            scene,
+            settings: scene.quasi_static.as_ref().expect("a quasi-static scene"),
+            model,
+            disc,
+            dofs,
+            f_ext,
+            criterion,
+            system,
+            notes: Notes::default(),
+            x: Vec::new(),
+            unit_reactions: Vec::new(),
+            held: vec![None; n_points],
+            pin_diagonal,
+            ratios: vec![0.0; n_bonds],
+            broken_total: 0,
+            pending: 0,
+            touched: Vec::new(),
+            recent: Vec::new(),
+            newly_held: Vec::new(),
+            rhs: Vec::new(),
+            peak_reaction: 0.0,
+            reference_displacement,
+            solves: Vec::new(),
+            log: Vec::new(),
+            start: Instant::now(),
+        }
+    }
+
+    /// The solution at the end of the run.
+    fn solution(self, end: End) -> QuasiStaticSolution {
+        let load_factor = end.load_factor;
+        let u = self.displacement(load_factor);
+        let damage = damage::damage(&self.disc);
+        let final_reactions = self
+            .unit_reactions
+            .iter()
+            .map(|r| Reaction {
+                force: r.force.map(|f| load_factor * f),
+                ..r.clone()
+            })
+            .collect();
+        QuasiStaticSolution {
+            set_names: self.dofs.sets.iter().map(|s| s.name.clone()).collect(),
+            nnz_k: self.system.pipeline.pattern().nnz(),
+            dofs_free: self.dofs.n_free(),
+            bonds: self.disc.bonds.len(),
+            nnz_l: self.system.pipeline.nnz_factor(),
+            disc: self.disc,
+            dofs: self.dofs,
+            u,
+            damage,
+            load_factor,
+            reference_displacement: self.reference_displacement,
+            records: end.records,
+            solves: self.solves,
+            log: self.log,
+            calibration: end.calibration,
+            outcome: end.outcome,
+            timings: end.timings,
+            loads: end.loads,
+            final_reactions,
+            plan: end.plan,
+        }
+    }
 }
 
 impl QuasiStaticSolution {

@@ -72,13 +72,9 @@ impl Run<'_> {
         let mut step = 0;
         while load_factor < max * (1.0 - 1e-12) {
             let target = (load_factor + step_size).min(max);
-            if let Some(limit) = self.settings.max_broken_per_step {
-                self.update_ratios(target);
-                let over = self.ratios.iter().filter(|&&r| r >= 1.0).count();
-                if over > limit && step_size > smallest {
-                    step_size = (0.5 * step_size).max(smallest);
-                    continue;
-                }
+            if self.too_many_over(target) && step_size > smallest {
+                step_size = (0.5 * step_size).max(smallest);
+                continue;
             }
             // Every accepted step must raise λ (the validated smallest step does):
             // the loop ends after at most steps / min_step_fraction steps.
@@ -96,40 +92,7 @@ impl Run<'_> {
             load_factor = target;
             let first_solve = self.solves.len();
             let broken_before = self.broken_total;
-            let mut resolves = 0;
-            let mut outcome = None;
-            loop {
-                self.update_ratios(load_factor);
-                let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
-                if largest < 1.0 {
-                    break;
-                }
-                if resolves == self.settings.max_resolves {
-                    self.log.push(format!(
-                        "step {step}: stopped re-solving after quasi_static.max_resolves = {} \
-                         re-solves with bonds still over their critical value",
-                        self.settings.max_resolves
-                    ));
-                    break;
-                }
-                let threshold = match self.settings.strategy {
-                    Strategy::MostCritical => (1.0 - self.settings.tolerance) * largest,
-                    _ => 1.0,
-                };
-                let chosen: Vec<usize> = (0..self.ratios.len())
-                    .filter(|&b| self.ratios[b] >= threshold.max(1.0))
-                    .collect();
-                // The body carried λ R₁ of its bonds before these break: a
-                // first step that breaks it apart still has that peak, and ends
-                // as a separation instead of running to max_load_factor.
-                self.note_peak(load_factor);
-                self.break_bonds(&chosen);
-                resolves += 1;
-                outcome = self.settle(step, load_factor)?;
-                if outcome.is_some() || self.separated() {
-                    break;
-                }
-            }
+            let outcome = self.break_until_settled(step, load_factor)?;
             let solves = self.solves[first_solve..].to_vec();
             let record = self.record(
                 step,
@@ -149,6 +112,60 @@ impl Run<'_> {
             step_size = (2.0 * step_size).min(uniform);
         }
         Ok((Outcome::Completed, load_factor))
+    }
+
+    /// With `max_broken_per_step`: whether a step to `target` would find more
+    /// bonds over their critical value (the step is then halved).
+    fn too_many_over(&mut self, target: f64) -> bool {
+        let Some(limit) = self.settings.max_broken_per_step else {
+            return false;
+        };
+        self.update_ratios(target);
+        self.ratios.iter().filter(|&&r| r >= 1.0).count() > limit
+    }
+
+    /// At load step `step`, breaks the bonds over their critical value
+    /// (`all`; `most_critical`: those within `tolerance` of the largest) and
+    /// re-solves, until none is over (or `max_resolves`, logged). Returns an
+    /// outcome when the run must end.
+    fn break_until_settled(
+        &mut self,
+        step: usize,
+        load_factor: f64,
+    ) -> Result<Option<Outcome>, Error> {
+        let mut resolves = 0;
+        loop {
+            self.update_ratios(load_factor);
+            let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
+            if largest < 1.0 {
+                return Ok(None);
+            }
+            if resolves == self.settings.max_resolves {
+                self.log.push(format!(
+                    "step {step}: stopped re-solving after quasi_static.max_resolves = {} \
+                     re-solves with bonds still over their critical value",
+                    self.settings.max_resolves
+                ));
+                return Ok(None);
+            }
+            let threshold = match self.settings.strategy {
+                Strategy::MostCritical => (1.0 - self.settings.tolerance) * largest,
+                _ => 1.0,
+            };
+            let chosen: Vec<usize> = (0..self.ratios.len())
+                .filter(|&b| self.ratios[b] >= threshold.max(1.0))
+                .collect();
+            // The body carried λ R₁ of its bonds before these break: a
+            // first step that breaks it apart still has that peak, and ends
+            // as a separation instead of running to max_load_factor.
+            self.note_peak(load_factor);
+            self.break_bonds(&chosen);
+            resolves += 1;
+            let outcome = self.settle(step, load_factor)?;
+            if outcome.is_some() || self.separated() {
+                return Ok(outcome);
+            }
+        }
     }
 
     /// The ratio of every bond at `load_factor` for the current bonds.
