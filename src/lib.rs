@@ -1,76 +1,97 @@
 //! # dhpd: implicit dual-horizon peridynamics
 //!
-//! dhpd solves static peridynamic problems by assembling the linearised tangent
-//! stiffness and factorising it (faer sparse Cholesky or LU), instead of running
-//! thousands of explicit steps. Horizons may vary from point to point: each bond
-//! is owned by the point whose horizon holds it and carries its owner's
-//! parameters (dual-horizon PD, Ren, Zhuang & Rabczuk), so a model can be fine
-//! where it matters and coarse elsewhere without ghost forces.
+//! dhpd solves peridynamic problems by assembling the linearised tangent
+//! stiffness and factorising it (sparse Cholesky or LU, or a two-level
+//! iterative solver), instead of running thousands of explicit steps; it also
+//! runs quasi-static fracture under prescribed displacement and explicit
+//! dynamics. Horizons may vary from point to point: each bond is owned by the
+//! point whose horizon holds it and carries its owner's parameters
+//! (dual-horizon PD, Ren, Zhuang & Rabczuk), so a model can be fine where it
+//! matters and coarse elsewhere without ghost forces.
 //!
-//! Data flows one way:
+//! **The front door.** Describe a [`scene::Scene`] (read a TOML or JSON file
+//! with [`scene::load`], or build one in code from [`scene::SceneSpec`] and its
+//! sections), then [`run`] it: the driver the scene asks for runs (a static
+//! solve; quasi-static fracture with `[quasi_static]`; explicit dynamics or
+//! dynamic relaxation with `[dynamics]`), watched by an [`Observer`] (its
+//! notes, progress, records and snapshots), and returns a [`Solution`]
+//! ([`results`] holds the types it is made of). [`output::Results`] writes it
+//! to disk as the command line does.
+//!
+//! ```
+//! use dhpd::scene::{BoundarySpec, BoxSpec, ComponentsSpec, Dimension, MaterialSpec};
+//! use dhpd::scene::{ModelSpec, RegionSpec, SceneSpec};
+//!
+//! // A 1D bar, 1 m long, held at the left end and stretched by 1e-4 m.
+//! let scene = SceneSpec::new(ModelSpec::new(Dimension::One))
+//!     .with_material("steel", MaterialSpec::new(2.0e11))
+//!     .with_region(RegionSpec::new("steel", 0.01, BoxSpec::new([0.0], [1.0])))
+//!     .with_boundary(BoundarySpec::displacement(
+//!         "left",
+//!         BoxSpec::new([0.0], [0.03]),
+//!         ComponentsSpec::new().x(0.0),
+//!     ))
+//!     .with_boundary(BoundarySpec::displacement(
+//!         "right",
+//!         BoxSpec::new([0.97], [1.0]),
+//!         ComponentsSpec::new().x(1e-4),
+//!     ))
+//!     .build()?;
+//! let solution = dhpd::run(&scene, &mut ())?.into_static().expect("a static scene");
+//! assert!(solution.residual < 1e-10);
+//! # Ok::<(), dhpd::Error>(())
+//! ```
+//!
+//! **Inside**, data flows one way; each layer uses only those before it and
+//! the ground floor (`error`, `vector`, `memory`, `csr`, `notes`):
 //!
 //! ```text
-//! scene file ─► scene::Scene (typed, validated)
-//!            ─► discretization::Discretization (points, bonds)
-//!            ─► model (bond kernels: force and tangent)
-//!            ─► assembly (pattern once, values in parallel) ─► solve::pipeline (faer)
-//!            ─► drivers::static_solve | drivers::quasi_static (+ damage) | drivers::dynamics
-//!            ─► output (VTU and .pvd series, CSV, JSON, Matrix Market)
+//! scene ─► geometry ─► discretization ─► model ─► assembly ─► solve ─► drivers ─► output
+//!  (typed,   (grids, files,  (points, bonds,  (bond     (pattern,    (sees     (setup, static,  (VTU,
+//!  validated) meshes, cracks) one transpose)  kernels)  K, loads)    matrices) fracture, explicit) CSV, JSON)
 //! ```
 //!
-//! A scene with a `[quasi_static]` section and a fracture parameter per
-//! material runs [`drivers::quasi_static::run`]: the prescribed displacements
-//! are scaled by a load factor and bonds break by the criteria of [`damage`].
-//! A scene with `[dynamics]` runs [`drivers::dynamics::run`]: explicit velocity
-//! Verlet (or dynamic relaxation) on the same kernels, breaking bonds by the
-//! same criteria.
-//!
-//! ```
-//! let scene = dhpd::scene::parse_spec(r#"
-//!     [model]
-//!     dimension = "1d"
-//!     [materials.steel]
-//!     youngs_modulus = 1.0
-//!     [[regions]]
-//!     material = "steel"
-//!     spacing = 0.01
-//!     box = { min = [0.0], max = [1.0] }
-//!     [[boundary]]
-//!     name = "left"
-//!     box = { min = [0.0], max = [0.03] }
-//!     displacement = { x = 0.0 }
-//!     [[boundary]]
-//!     name = "right"
-//!     box = { min = [0.97], max = [1.0] }
-//!     displacement = { x = 1e-4 }
-//! "#, false).unwrap();
-//! let scene = dhpd::scene::Scene::try_from_spec(scene, std::path::Path::new("."), "bar").unwrap();
-//! let solution = dhpd::drivers::static_solve::solve(&scene).unwrap();
-//! assert!(solution.residual < 1e-10);
-//! ```
+//! The internals are crate-private; the `fixtures` feature opens them (and the
+//! validation cases) to the crate's own tests, examples and studies. It is not
+//! a stable API.
 
-pub mod assembly;
-pub mod csr;
-pub mod damage;
+/// Declares internal modules: crate-private, public (and hidden from the
+/// documentation) with the `fixtures` feature.
+macro_rules! internal {
+    ($($name:ident),* $(,)?) => {$(
+        #[cfg(feature = "fixtures")]
+        #[doc(hidden)]
+        pub mod $name;
+        #[cfg(not(feature = "fixtures"))]
+        pub(crate) mod $name;
+    )*};
+}
+
 pub mod default_scene;
-pub mod discretization;
-pub mod drivers;
 pub mod error;
-pub mod geometry;
-pub mod memory;
-pub mod model;
-pub mod notes;
 pub mod output;
-pub mod reference;
+pub mod results;
 pub mod scene;
-pub mod solve;
-pub mod validation;
-pub mod vector;
 
-pub use drivers::dynamics::{DynamicsSolution, Outcome as DynamicsOutcome};
-pub use drivers::quasi_static::QuasiStaticSolution;
-pub use drivers::static_solve::StaticSolution;
+internal!(
+    assembly,
+    csr,
+    damage,
+    discretization,
+    drivers,
+    geometry,
+    memory,
+    model,
+    notes,
+    reference,
+    solve,
+    vector
+);
+
+#[cfg(feature = "fixtures")]
+#[doc(hidden)]
+pub mod validation;
+
 pub use drivers::{check, run, Observer, Progress, Snapshot, Solution};
 pub use error::{Error, InputError, NumericalError};
 pub use notes::Notes;
-pub use solve::pipeline::Route;

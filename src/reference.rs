@@ -1,6 +1,8 @@
 //! Independent references for validation: closed forms and finite-element
 //! results sampled on a regular grid (the JSON files under `validation/`,
-//! produced by committed scikit-fem scripts).
+//! produced by committed scikit-fem scripts). The default run compares with
+//! one of them; the tests and studies (feature `fixtures`) use the rest.
+#![cfg_attr(not(feature = "fixtures"), allow(dead_code))]
 
 use serde::Deserialize;
 use std::collections::BTreeMap;

@@ -194,7 +194,7 @@ fn point_writers_refuse_non_finite_numbers() {
         (&u, &nothing, "the displacement of point 7"),
         (&zero, &damage, "the damage of point 11"),
     ] {
-        let data = dhpd::output::PointData {
+        let data = dhpd::output::points::PointData {
             disc: &disc,
             u,
             velocity: None,

@@ -35,7 +35,7 @@ pub struct ConstrainedSet {
 pub struct DofMap {
     /// Spatial dimension.
     pub d: usize,
-    /// `free_index[3 i + c]`: index among the free unknowns, or [`PRESCRIBED`].
+    /// `free_index[3 i + c]`: index among the free unknowns, or `PRESCRIBED`.
     pub free_index: Vec<u32>,
     /// Prescribed displacements per point (zero for free components).
     pub prescribed: Vec<[f64; 3]>,

@@ -114,8 +114,6 @@ pub enum Uncalibrated {
     Dimension,
     /// A point of a Gmsh mesh: an irregular cloud.
     Irregular,
-    /// No table for the model and criterion.
-    Model,
     /// The shear model's factor is measured at one Poisson ratio.
     PoissonRatio,
 }
@@ -129,7 +127,6 @@ impl Uncalibrated {
             Uncalibrated::Irregular => {
                 "points of a Gmsh mesh form an irregular cloud, whose factor is not measured"
             }
-            Uncalibrated::Model => "no dissipation factor is measured for this model's criterion",
             Uncalibrated::PoissonRatio => {
                 "the shear model's dissipation factor is measured at poisson_ratio = 1/3 only"
             }

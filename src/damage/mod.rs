@@ -264,6 +264,7 @@ fn lattice_factors(
 
 impl Criterion {
     /// Every owner's critical value from its material and horizon, and the no-fail zones.
+    #[cfg(feature = "fixtures")]
     pub fn new(scene: &Scene, disc: &Discretization) -> Self {
         Self::with_report(scene, disc).0
     }
@@ -330,6 +331,7 @@ impl Criterion {
     }
 
     /// The critical value of owner `i`'s bonds.
+    #[cfg(feature = "fixtures")]
     pub fn critical(&self, i: usize) -> f64 {
         self.critical[i]
     }
@@ -343,11 +345,6 @@ impl Criterion {
         } else {
             self.critical[owner]
         }
-    }
-
-    /// Whether the criterion has a tension check (shear model).
-    pub fn has_tension_check(&self) -> bool {
-        self.tension_check
     }
 
     /// Writes, for every bond, `value / critical value` for displacements `u`

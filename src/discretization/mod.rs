@@ -179,6 +179,7 @@ pub struct RawBody {
 /// Builds the points of a scene (grids, point files, holes, horizon mode) and
 /// their bonds, notes dropped: for the crate's tests and studies (the drivers
 /// start from their setup).
+#[cfg(feature = "fixtures")]
 pub fn build(scene: &Scene) -> Result<Discretization, Error> {
     discretize(scene, generate_points(scene)?, &mut Notes::default())
 }

@@ -128,12 +128,14 @@ impl StaticSolution {
 }
 
 /// The setup of `scene` (notes dropped): for the crate's tests and studies.
+#[cfg(feature = "fixtures")]
 pub fn prepare(scene: &Scene) -> Result<Setup, Error> {
     super::check(scene, &mut ())
 }
 
 /// Solves the static problem of `scene` (notes dropped): for the crate's
 /// tests and studies.
+#[cfg(feature = "fixtures")]
 pub fn solve(scene: &Scene) -> Result<StaticSolution, Error> {
     run(scene, prepare(scene)?, &mut ())
 }

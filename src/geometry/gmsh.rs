@@ -90,6 +90,7 @@ pub struct Mesh {
 impl Mesh {
     /// The physical group called `name` (names may repeat across dimensions:
     /// the first, lowest dimension, is returned).
+    #[cfg(feature = "fixtures")]
     pub fn group(&self, name: &str) -> Option<&PhysicalGroup> {
         self.groups.iter().find(|g| g.name == name)
     }

@@ -26,7 +26,7 @@ pub enum HorizonRule {
 /// A validated grid region.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Region {
-    /// Index into [`Scene::materials`].
+    /// Index into [`super::Scene::materials`].
     pub material: usize,
     /// Grid spacing.
     pub spacing: f64,

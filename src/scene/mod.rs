@@ -8,23 +8,17 @@
 //! are done by the discretisation right after the points exist and before
 //! any bond is built.
 //!
-//! Sections: [`model`] (`[model]`, `[discretization]`), [`material`]
-//! (`[materials]` and their elastic constants), [`body`] (regions, point
-//! files, meshes, holes, cracks), [`boundary`] (supports and loads),
-//! [`output`], [`solver`] (the solver's vocabulary), [`fracture`]
-//! (`[fracture]`, `[quasi_static]`), [`dynamics`] (`[dynamics]`, initial
-//! conditions); [`fields`] holds the checks they share, [`read`] the parsing.
+//! Sections, each a file with its typed form and its validator: `model`
+//! (`[model]`, `[discretization]`), `material` (`[materials]` and their
+//! elastic constants: the micromodulus, the bulk and shear moduli, read by the
+//! models too), `body` (regions, point files, meshes, holes, cracks),
+//! `boundary` (supports and loads), `output`, `solver` (the solver's
+//! vocabulary), `fracture` (`[fracture]`, `[quasi_static]`), `dynamics`
+//! (`[dynamics]`, initial conditions); `fields` holds the checks they share,
+//! `read` the parsing, `builder` the constructors of the sections in code.
 
-pub mod body;
-pub mod boundary;
-pub mod dynamics;
-pub mod fields;
-pub mod fracture;
-pub mod material;
-pub mod model;
-pub mod output;
-pub mod read;
-pub mod solver;
+internal!(body, boundary, dynamics, fields, fracture, material, model, output, read, solver);
+mod builder;
 mod spec;
 
 pub use body::{Crack, Hole, HorizonRule, MeshFile, PointFile, Region};

@@ -97,7 +97,7 @@ pub enum Route {
     /// A Krylov solve preconditioned by the previous factor.
     Reuse,
     /// The previous factor updated by the rank-one terms of the broken bonds
-    /// (Sherman–Morrison–Woodbury, [`super::low_rank`]): exact, no iteration.
+    /// (Sherman–Morrison–Woodbury, `solve::low_rank`): exact, no iteration.
     Update,
 }
 

@@ -2,10 +2,11 @@
 //! solver route, times, residual and reactions (static), records, solves and
 //! peaks (fracture), steps, energy balance and throughput (dynamics).
 
-use dhpd::scene::{Scene, SolverMethod};
-use dhpd::{
-    DynamicsOutcome, DynamicsSolution, QuasiStaticSolution, Route, Solution, StaticSolution,
+use dhpd::results::{
+    DynamicsOutcome, DynamicsSolution, QuasiStaticSolution, Route, StaticSolution,
 };
+use dhpd::scene::{Scene, SolverMethod};
+use dhpd::Solution;
 use std::path::Path;
 
 /// Prints the report of `solution`, written into `dir`.

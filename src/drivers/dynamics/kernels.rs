@@ -430,6 +430,7 @@ fn blocks(start: &[usize], pairs: usize) -> Vec<Block> {
 impl PairKernel {
     /// Runs the force loop on `simd` (for comparisons); false, and no change,
     /// when this CPU does not offer it.
+    #[cfg(feature = "fixtures")]
     pub fn set_simd(&mut self, simd: Simd) -> bool {
         let ok = Simd::available().contains(&simd);
         if ok {
