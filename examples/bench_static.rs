@@ -9,7 +9,7 @@
 //! cargo run --release --example bench_static -- 2d 400 3 bond_based amd  # the ordering: amd,
 //!                                                  # nested_dissection or auto (default)
 //! cargo run --release --example bench_static -- 2d 400 3 mixed           # single-precision factor
-//! cargo run --release --example bench_static -- 3d 58 1 iterative        # CG, short-range preconditioner
+//! cargo run --release --example bench_static -- 3d 58 1 iterative        # CG, two-level preconditioner
 //! RAYON_NUM_THREADS=1 cargo run --release --example bench_static -- ...  # one thread
 //! ```
 //!
