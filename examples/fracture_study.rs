@@ -474,6 +474,23 @@ fn strategies(quick: bool) {
 /// crack leaves the notch tip, against the maximum tangential stress criterion,
 /// over resolution (δ/a), horizon factor and the lattice's orientation; then the
 /// inclined centre crack under tension.
+/// The shear-grip (pure mode II) cases: model, W/Δx, m and the lattice's angle
+/// against the notch (degrees).
+const SHEAR_GRIP_SWEEP: &[(&str, usize, f64, f64)] = &[
+    ("shear", 30, 3.015, 0.0),
+    ("shear", 40, 3.015, 0.0),
+    ("bond_based", 40, 3.015, 0.0),
+    ("bond_based", 60, 3.015, 0.0),
+    ("bond_based", 80, 3.015, 0.0),
+    ("bond_based", 120, 3.015, 0.0),
+    ("bond_based", 80, 4.015, 0.0),
+    ("bond_based", 100, 5.015, 0.0),
+    ("bond_based", 40, 3.015, 10.0),
+    ("bond_based", 40, 3.015, 20.0),
+    ("bond_based", 40, 3.015, 30.0),
+    ("bond_based", 40, 3.015, 45.0),
+];
+
 /// `from`: the first case of the shear-grip sweep to run (a resumed sweep writes
 /// `kink_part.csv`).
 fn kink(quick: bool, from: usize) {
@@ -490,20 +507,7 @@ fn kink(quick: bool, from: usize) {
     let grid: &[(&'static str, usize, f64, f64)] = if quick {
         &[("shear", 30, 3.015, 0.0), ("bond_based", 30, 3.015, 0.0)]
     } else {
-        &[
-            ("shear", 30, 3.015, 0.0),
-            ("shear", 40, 3.015, 0.0),
-            ("bond_based", 40, 3.015, 0.0),
-            ("bond_based", 60, 3.015, 0.0),
-            ("bond_based", 80, 3.015, 0.0),
-            ("bond_based", 120, 3.015, 0.0),
-            ("bond_based", 80, 4.015, 0.0),
-            ("bond_based", 100, 5.015, 0.0),
-            ("bond_based", 40, 3.015, 10.0),
-            ("bond_based", 40, 3.015, 20.0),
-            ("bond_based", 40, 3.015, 30.0),
-            ("bond_based", 40, 3.015, 45.0),
-        ]
+        SHEAR_GRIP_SWEEP
     };
     for &(model, cells, m, lattice) in grid.iter().skip(from) {
         let mut case = Sent::new(model, cells, m);
@@ -782,19 +786,7 @@ fn scenes() {
     let mut bar = Sent::new("bond_based", 20, 3.015);
     bar.depth = Some(0.02);
     cases.push(bar);
-    for (model, cells, m, lattice) in [
-        ("shear", 40, 3.015, 0.0),
-        ("bond_based", 40, 3.015, 0.0),
-        ("bond_based", 60, 3.015, 0.0),
-        ("bond_based", 80, 3.015, 0.0),
-        ("bond_based", 120, 3.015, 0.0),
-        ("bond_based", 80, 4.015, 0.0),
-        ("bond_based", 100, 5.015, 0.0),
-        ("bond_based", 40, 3.015, 10.0),
-        ("bond_based", 40, 3.015, 20.0),
-        ("bond_based", 40, 3.015, 30.0),
-        ("bond_based", 40, 3.015, 45.0),
-    ] {
+    for &(model, cells, m, lattice) in SHEAR_GRIP_SWEEP {
         let mut case = Sent::new(model, cells, m);
         case.loading = Loading::Shear;
         case.lattice_angle = lattice;
