@@ -2,7 +2,9 @@
 
 use crate::assembly::loads::AppliedLoad;
 use crate::damage::CalibrationReport;
-use crate::drivers::quasi_static::{Outcome, QuasiStaticSolution, ResolveRecord, StepRecord};
+use crate::drivers::quasi_static::{
+    Outcome, QuasiStaticSolution, RankingStats, ResolveRecord, StepRecord,
+};
 use crate::drivers::setup::Timings;
 use crate::drivers::static_solve::{Counts, StaticSolution};
 use crate::drivers::system::Reaction;
@@ -166,6 +168,8 @@ pub struct QuasiStaticSummary<'a> {
     pub fresh_factorisations: RouteStats,
     /// Solves reusing the previous factor.
     pub reuses: RouteStats,
+    /// `event`: how the rankings after Krylov re-solves were decided.
+    pub ranking: &'a RankingStats,
     /// How `fracture_energy` became every owner's critical value.
     pub fracture_calibration: &'a CalibrationReport,
     /// What breaking did to the system.
@@ -214,6 +218,7 @@ pub fn write_quasi_static(
         peaks,
         fresh_factorisations: RouteStats::of(&route(Route::Factor)),
         reuses: RouteStats::of(&route(Route::Reuse)),
+        ranking: &s.ranking,
         fracture_calibration: &s.calibration,
         log: &s.log,
         loads: &s.loads,

@@ -22,17 +22,36 @@ pub fn pcg(
     tol: f64,
     max_iterations: usize,
 ) -> KrylovReport {
+    pcg_with_checkpoint(apply, precondition, b, x, tol, max_iterations, None).0
+}
+
+/// [`pcg`] that also returns the first iterate whose recursive residual is at
+/// most `checkpoint · ‖b‖` (`checkpoint > tol`; the initial guess if it already
+/// is, `None` if no iteration ran). While the iteration converges steadily, that
+/// iterate's distance from the final one estimates the final error from above
+/// (its own error is about `checkpoint / tol` times larger): the event strategy
+/// uses it to certify which bonds are critical.
+pub fn pcg_with_checkpoint(
+    apply: &dyn Fn(&[f64]) -> Vec<f64>,
+    precondition: &dyn Fn(&mut [f64]),
+    b: &[f64],
+    x: &mut [f64],
+    tol: f64,
+    max_iterations: usize,
+    checkpoint: Option<f64>,
+) -> (KrylovReport, Option<Vec<f64>>) {
     let dot = |a: &[f64], c: &[f64]| a.iter().zip(c).map(|(p, q)| p * q).sum::<f64>();
     let norm = |v: &[f64]| super::norm2(v.iter().copied());
     let b_norm = norm(b);
     if b_norm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);
-        return KrylovReport {
+        let report = KrylovReport {
             iterations: 0,
             relative_residual: 0.0,
             converged: true,
             stagnated: false,
         };
+        return (report, None);
     }
     let ax = apply(x);
     let mut r: Vec<f64> = b.iter().zip(&ax).map(|(bi, ai)| bi - ai).collect();
@@ -42,7 +61,15 @@ pub fn pcg(
     let mut p = z.clone();
     let mut rz = dot(&r, &z);
     let mut broke_down = false;
-    while norm(&r) > tol * b_norm && iterations < max_iterations {
+    let mut earlier = None;
+    loop {
+        let r_norm = norm(&r);
+        if earlier.is_none() && checkpoint.is_some_and(|c| r_norm <= c * b_norm) {
+            earlier = Some(x.to_vec());
+        }
+        if r_norm <= tol * b_norm || iterations >= max_iterations {
+            break;
+        }
         let ap = apply(&p);
         iterations += 1;
         let pap = dot(&p, &ap);
@@ -65,12 +92,13 @@ pub fn pcg(
     }
     let ax = apply(x);
     let true_residual = super::norm2(b.iter().zip(&ax).map(|(bi, ai)| bi - ai)) / b_norm;
-    KrylovReport {
+    let report = KrylovReport {
         iterations,
         relative_residual: true_residual,
         converged: true_residual <= tol,
         stagnated: broke_down && true_residual > tol,
-    }
+    };
+    (report, earlier.filter(|_| iterations > 0))
 }
 
 #[cfg(test)]

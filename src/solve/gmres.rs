@@ -32,18 +32,38 @@ pub fn gmres(
     restart: usize,
     max_iterations: usize,
 ) -> GmresReport {
-    let n = b.len();
+    gmres_with_checkpoint(apply, precondition, b, x, tol, restart, max_iterations, None).0
+}
+
+/// [`gmres`] that also returns the first iterate whose residual (as the
+/// iteration tracks it) is at most `checkpoint · ‖b‖` (`checkpoint > tol`;
+/// `None` if no iteration ran): its distance from the final iterate estimates
+/// the final error from above, as in [`super::cg::pcg_with_checkpoint`]. Forming
+/// it within a cycle costs one preconditioner application.
+#[allow(clippy::too_many_arguments)]
+pub fn gmres_with_checkpoint(
+    apply: &dyn Fn(&[f64]) -> Vec<f64>,
+    precondition: &dyn Fn(&mut [f64]),
+    b: &[f64],
+    x: &mut [f64],
+    tol: f64,
+    restart: usize,
+    max_iterations: usize,
+    checkpoint: Option<f64>,
+) -> (GmresReport, Option<Vec<f64>>) {
     let norm = |v: &[f64]| super::norm2(v.iter().copied());
     let b_norm = norm(b);
     if b_norm == 0.0 {
         x.iter_mut().for_each(|v| *v = 0.0);
-        return GmresReport {
+        let report = GmresReport {
             iterations: 0,
             relative_residual: 0.0,
             converged: true,
             stagnated: false,
         };
+        return (report, None);
     }
+    let mut earlier: Option<Vec<f64>> = None;
     let mut iterations = 0;
     let mut previous = f64::INFINITY;
     loop {
@@ -55,13 +75,17 @@ pub fn gmres(
         // that round-off allows (the recurrence's residual then keeps claiming
         // convergence while the true one stays put): stop instead of cycling.
         let stagnated = relative > STAGNATION_FACTOR * previous;
+        if earlier.is_none() && checkpoint.is_some_and(|c| relative <= c) {
+            earlier = Some(x.to_vec());
+        }
         if relative <= tol || iterations >= max_iterations || stagnated {
-            return GmresReport {
+            let report = GmresReport {
                 iterations,
                 relative_residual: relative,
                 converged: relative <= tol,
                 stagnated: stagnated && relative > tol,
             };
+            return (report, earlier.filter(|_| iterations > 0));
         }
         previous = relative;
         let mut basis: Vec<Vec<f64>> = vec![r.iter().map(|v| v / beta).collect()];
@@ -98,27 +122,44 @@ pub fn gmres(
             g[k + 1] = -sn[k] * g[k];
             g[k] *= cs[k];
             k_used = k + 1;
-            if g[k + 1].abs() / b_norm <= tol || wn == 0.0 || iterations >= max_iterations {
+            let tracked = g[k + 1].abs() / b_norm;
+            if earlier.is_none() && checkpoint.is_some_and(|c| tracked <= c) && tracked > tol {
+                let update = krylov_update(&h, &g, &basis, k_used, precondition);
+                earlier = Some(x.iter().zip(&update).map(|(xi, ui)| xi + ui).collect());
+            }
+            if tracked <= tol || wn == 0.0 || iterations >= max_iterations {
                 break;
             }
             basis.push(w.iter().map(|v| v / wn).collect());
         }
-        // Back substitution for the Krylov coefficients, then x += M⁻¹ V y.
-        let mut y = vec![0.0; k_used];
-        for i in (0..k_used).rev() {
-            let s: f64 = (i + 1..k_used).map(|j| h[i][j] * y[j]).sum();
-            y[i] = (g[i] - s) / h[i][i];
-        }
-        let mut update = vec![0.0; n];
-        for (j, yj) in y.iter().enumerate() {
-            update
-                .iter_mut()
-                .zip(&basis[j])
-                .for_each(|(u, v)| *u += yj * v);
-        }
-        precondition(&mut update);
+        let update = krylov_update(&h, &g, &basis, k_used, precondition);
         x.iter_mut().zip(&update).for_each(|(xi, ui)| *xi += ui);
     }
+}
+
+/// The correction `M⁻¹ V y` of a cycle after `k_used` steps: back substitution
+/// for the Krylov coefficients `y` in the rotated Hessenberg system.
+fn krylov_update(
+    h: &[Vec<f64>],
+    g: &[f64],
+    basis: &[Vec<f64>],
+    k_used: usize,
+    precondition: &dyn Fn(&mut [f64]),
+) -> Vec<f64> {
+    let mut y = vec![0.0; k_used];
+    for i in (0..k_used).rev() {
+        let s: f64 = (i + 1..k_used).map(|j| h[i][j] * y[j]).sum();
+        y[i] = (g[i] - s) / h[i][i];
+    }
+    let mut update = vec![0.0; basis[0].len()];
+    for (j, yj) in y.iter().enumerate() {
+        update
+            .iter_mut()
+            .zip(&basis[j])
+            .for_each(|(u, v)| *u += yj * v);
+    }
+    precondition(&mut update);
+    update
 }
 
 #[cfg(test)]

@@ -33,9 +33,9 @@
 //! iterations that costs as much as half a fresh factorisation and solve, both
 //! measured in this run (`solver.refactor_iterations` overrides it).
 
-use super::cg::pcg;
+use super::cg::{pcg, pcg_with_checkpoint};
 use super::cholesky::{FactorError, PivotStats};
-use super::gmres::{gmres, GmresReport};
+use super::gmres::{gmres, gmres_with_checkpoint, GmresReport};
 use super::low_rank::{LowRank, Term};
 use super::lu::SparseLu;
 use super::refine::{refine, refine_extended};
@@ -140,6 +140,21 @@ pub struct Solved {
     pub x: Vec<f64>,
     /// What the solve did.
     pub report: SolveReport,
+    /// An earlier iterate of a Krylov solve, the first whose residual fell
+    /// below [`CHECKPOINT_FACTOR`] times the tolerance: while the iteration
+    /// converges steadily its error is about that factor larger than `x`'s, so
+    /// its distance from `x` bounds `x`'s error from above. `None` for direct
+    /// solves and where no iteration ran.
+    pub earlier: Option<Vec<f64>>,
+}
+
+/// Ratio of the residual of [`Solved::earlier`] to the solve's tolerance.
+pub const CHECKPOINT_FACTOR: f64 = 100.0;
+
+/// A Krylov run's report, and whether it was GMRES.
+struct KrylovRun {
+    krylov: GmresReport,
+    gmres: Option<GmresReport>,
 }
 
 /// How the first solve after a factorisation went (before the checks).
@@ -475,6 +490,7 @@ impl Pipeline {
                 solve_seconds,
                 gmres: fresh.krylov,
             },
+            earlier: None,
         })
     }
 
@@ -721,16 +737,9 @@ impl Pipeline {
         let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
         let t = Instant::now();
         let mut x = x0.to_vec();
-        let cg = self.symmetric
-            && matches!(self.source, Source::Matrix | Source::TwoLevel)
-            && !matches!(self.factor, Factor::Lu(_));
-        let report = if cg {
-            let apply = |v: &[f64]| self.product(m.k, v);
-            let precondition = |v: &mut [f64]| self.precondition(m.k, v);
-            pcg(&apply, &precondition, rhs, &mut x, tolerance, cap)
-        } else {
-            self.gmres_to(m.k, rhs, &mut x, cap, tolerance)
-        };
+        let (report, earlier) = self.krylov(m.k, rhs, &mut x, tolerance, cap);
+        let cg = report.gmres.is_none();
+        let report = report.krylov;
         let elapsed = t.elapsed().as_secs_f64();
         if report.iterations > 0 {
             self.costs.iteration_seconds = elapsed / report.iterations as f64;
@@ -748,12 +757,87 @@ impl Pipeline {
                     solve_seconds: elapsed,
                     gmres: (!cg).then_some(report),
                 },
+                earlier,
             });
         }
         let mut fresh = self.solve(layout, m, rhs, notes)?;
         fresh.report.solve_seconds += elapsed;
         fresh.report.iterations += report.iterations;
         Ok(fresh)
+    }
+
+    /// Krylov iterations on `K` from `x` to `tolerance` with the current
+    /// factor or cycle as preconditioner (CG where `K` is symmetric and the
+    /// preconditioner is of `K` itself, GMRES otherwise), keeping the
+    /// checkpoint of [`Solved::earlier`].
+    fn krylov(
+        &self,
+        k: &Stiffness,
+        rhs: &[f64],
+        x: &mut [f64],
+        tolerance: f64,
+        cap: usize,
+    ) -> (KrylovRun, Option<Vec<f64>>) {
+        let cg = self.symmetric
+            && matches!(self.source, Source::Matrix | Source::TwoLevel)
+            && !matches!(self.factor, Factor::Lu(_));
+        let apply = |v: &[f64]| self.product(k, v);
+        let precondition = |v: &mut [f64]| self.precondition(k, v);
+        let checkpoint = Some(CHECKPOINT_FACTOR * tolerance);
+        let (report, earlier) = if cg {
+            pcg_with_checkpoint(&apply, &precondition, rhs, x, tolerance, cap, checkpoint)
+        } else {
+            gmres_with_checkpoint(
+                &apply,
+                &precondition,
+                rhs,
+                x,
+                tolerance,
+                GMRES_RESTART,
+                cap,
+                checkpoint,
+            )
+        };
+        let run = KrylovRun {
+            krylov: report,
+            gmres: (!cg).then_some(report),
+        };
+        (run, earlier)
+    }
+
+    /// Improves a re-solve's `x` by Krylov iterations with the current
+    /// preconditioner until its residual is [`CHECKPOINT_FACTOR`] times
+    /// smaller (`K` and `rhs` unchanged): the event strategy's tighter solve
+    /// when the bonds' ratios are too close to decide which are critical.
+    /// `None` when no preconditioner is at hand or the iteration made no
+    /// progress (the round-off floor).
+    pub fn improve(&mut self, m: Matrices, rhs: &[f64], x: &[f64]) -> Option<Solved> {
+        if !self.factored {
+            return None;
+        }
+        let t = Instant::now();
+        let before = relative_residual(&self.product(m.k, x), rhs);
+        let tolerance = before / CHECKPOINT_FACTOR;
+        let mut improved = x.to_vec();
+        let (run, _) = self.krylov(m.k, rhs, &mut improved, tolerance, self.refactor_threshold());
+        let report = run.krylov;
+        let progress = report.relative_residual < 0.5 * before;
+        if !(progress && improved.iter().all(|v| v.is_finite())) {
+            return None;
+        }
+        Some(Solved {
+            x: improved,
+            report: SolveReport {
+                route: Route::Reuse,
+                iterations: report.iterations,
+                refinement_steps: 0,
+                residual: report.relative_residual,
+                factor_seconds: 0.0,
+                solve_seconds: t.elapsed().as_secs_f64(),
+                gmres: run.gmres,
+            },
+            earlier: Some(x.to_vec()),
+        })
     }
 
     /// GMRES on `K` preconditioned by the current factor, from `x`.
@@ -855,6 +939,7 @@ impl Pipeline {
                 solve_seconds: elapsed,
                 gmres: None,
             },
+            earlier: None,
         })
     }
 

@@ -20,11 +20,12 @@
 //! LU when that is not positive definite; the switch is kept for later solves
 //! and noted.
 //!
-//! **Automatic route.** Unless the scene names a method (or runs fracture,
-//! whose re-solves update a factor exactly), a direct factor is replaced by the
-//! `iterative` route when the symbolic analysis predicts more than
-//! [`ITERATIVE_FROM_FLOPS_PER_ENTRY`] operations per stored entry of `K` (the
-//! factor's cost grows faster than the iterations'; 3D bodies cross it early).
+//! **Automatic route.** Unless the scene names a method, a direct factor is
+//! replaced by the `iterative` route when the symbolic analysis predicts more
+//! than [`ITERATIVE_FROM_FLOPS_PER_ENTRY`] operations per stored entry of `K`
+//! (the factor's cost grows faster than the iterations'; 3D bodies cross it
+//! early), or [`ITERATIVE_FRACTURE_FROM_FLOPS_PER_ENTRY`] in a fracture run,
+//! whose re-solves reuse the factor.
 //! Where nested dissection is the only candidate ordering, its dense root
 //! separator alone can decide, before any symbolic analysis. Any route whose
 //! factor does not fit in memory in either precision becomes `iterative`, with
@@ -71,6 +72,12 @@ pub const LU_MAX_UNKNOWNS: usize = 20_000;
 /// conditioning and whose failures name the point of a mechanism, wherever it
 /// is not clearly slower.
 pub const ITERATIVE_FROM_FLOPS_PER_ENTRY: f64 = 2e4;
+
+/// [`ITERATIVE_FROM_FLOPS_PER_ENTRY`] for fracture runs, whose factor serves
+/// every re-solve (exact low-rank updates, or the preconditioner of a few
+/// Krylov iterations) while the iterative route pays its iterations at each:
+/// only a factor far costlier than the static break-even is replaced.
+pub const ITERATIVE_FRACTURE_FROM_FLOPS_PER_ENTRY: f64 = 1e5;
 
 /// Factor size from which `auto` factorises in single precision: measured on
 /// the 2D square (bond-based, δ = 3.015Δx, one thread), single precision halves
@@ -227,7 +234,12 @@ fn choose_factor(
         (None, SolverMethod::Gmres) => (Source::SymmetricPart, pattern),
         _ => (Source::Matrix, pattern),
     };
-    let may_switch = settings.automatic && !hints.fracture && !hints.near_incompressible;
+    let may_switch = settings.automatic && !hints.near_incompressible;
+    let threshold = if hints.fracture {
+        ITERATIVE_FRACTURE_FROM_FLOPS_PER_ENTRY
+    } else {
+        ITERATIVE_FROM_FLOPS_PER_ENTRY
+    };
     // Where nested dissection is the only candidate, its root separator
     // bounds the factor's cost from below: past the threshold the symbolic
     // analysis is not worth running.
@@ -237,7 +249,7 @@ fn choose_factor(
     let per_entry_bound = dissection
         .as_ref()
         .map_or(0.0, |d| d.root_flops() / pattern.nnz().max(1) as f64);
-    if may_switch && per_entry_bound > ITERATIVE_FROM_FLOPS_PER_ENTRY {
+    if may_switch && per_entry_bound > threshold {
         notes.push(format!(
             "note: the root separator of a nested-dissection factor ({} unknowns, a \
              dense block) alone would cost {:.1e} operations ({per_entry_bound:.1e} \
@@ -251,7 +263,7 @@ fn choose_factor(
     let (mut chol, report) = analyse_cholesky(structure, layout, settings.ordering, dissection)?;
     let per_entry = chol.flops() / pattern.nnz().max(1) as f64;
     match choose_precision(&mut chol, structure.nnz(), settings, notes) {
-        Ok(()) if may_switch && per_entry > ITERATIVE_FROM_FLOPS_PER_ENTRY => {
+        Ok(()) if may_switch && per_entry > threshold => {
             notes.push(format!(
                 "note: a direct factor would cost {:.1e} operations ({per_entry:.1e} \
                  per entry of K); solving iteratively instead (set solver.method \

@@ -78,6 +78,14 @@ fn print_fracture(scene: &Scene, s: &QuasiStaticSolution) {
         count(Route::Reuse),
         s.outcome.describe()
     );
+    let ranking = &s.ranking;
+    if ranking.tightened + ranking.undecided > 0 {
+        println!(
+            "event ranking after {} Krylov re-solves: {} decided by tighter re-solves, {} undecided \
+             at the round-off floor (broken as computed)",
+            ranking.checked, ranking.tightened, ranking.undecided
+        );
+    }
     for (k, name) in s.set_names.iter().enumerate() {
         if let Some(peak) = s.peak(k) {
             let f = peak.reactions[k];

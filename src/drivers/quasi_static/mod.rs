@@ -69,8 +69,11 @@ use serde::Serialize;
 use std::time::Instant;
 
 mod breakage;
+mod ranking;
 mod resolves;
 mod strategies;
+
+pub use ranking::RankingStats;
 
 /// Reaction magnitude, relative to its peak, below which the body counts as separated.
 const SEPARATED: f64 = 1e-6;
@@ -207,6 +210,8 @@ pub struct QuasiStaticSolution {
     pub calibration: CalibrationReport,
     /// How the run ended.
     pub outcome: Outcome,
+    /// `event`: how the rankings after Krylov re-solves were decided.
+    pub ranking: RankingStats,
     /// Setup time per phase.
     pub timings: Timings,
     /// Applied loads at λ = 1.
@@ -274,6 +279,12 @@ struct Run<'s> {
     newly_held: Vec<usize>,
     /// Right-hand side at λ = 1 (before pinning).
     rhs: Vec<f64>,
+    /// Right-hand side of the last solve (pinned).
+    solve_rhs: Vec<f64>,
+    /// The last Krylov solve's checkpoint iterate ([`Solved::earlier`]).
+    earlier: Option<Vec<f64>>,
+    /// How the event strategy's rankings were decided.
+    ranking: RankingStats,
     peak_reaction: f64,
     reference_displacement: f64,
     solves: Vec<ResolveRecord>,
@@ -388,6 +399,9 @@ impl<'s> Run<'s> {
             recent: Vec::new(),
             newly_held: Vec::new(),
             rhs: Vec::new(),
+            solve_rhs: Vec::new(),
+            earlier: None,
+            ranking: RankingStats::default(),
             peak_reaction: 0.0,
             reference_displacement,
             solves: Vec::new(),
@@ -426,6 +440,7 @@ impl<'s> Run<'s> {
             log: self.log,
             calibration: end.calibration,
             outcome: end.outcome,
+            ranking: self.ranking,
             timings: end.timings,
             loads: end.loads,
             final_reactions,

@@ -7,7 +7,12 @@ use super::*;
 impl Run<'_> {
     /// Displacements at λ = 1 (held points at zero: they do not deform).
     pub(super) fn unit_displacement(&self) -> Vec<[f64; 3]> {
-        let mut u = self.dofs.expand(&self.x);
+        self.unit_displacement_of(&self.x)
+    }
+
+    /// Displacements at λ = 1 of the free unknowns `x` (held points at zero).
+    pub(super) fn unit_displacement_of(&self, x: &[f64]) -> Vec<[f64; 3]> {
+        let mut u = self.dofs.expand(x);
         for (i, h) in self.held.iter().enumerate() {
             if h.is_some() {
                 u[i] = [0.0; 3];
@@ -190,8 +195,10 @@ impl Run<'_> {
             Some(terms) => pipeline.resolve_update(layout, m, &rhs, &self.x, terms, notes),
             None => pipeline.resolve(layout, m, &rhs, &self.x, notes),
         };
-        let Solved { x, report } = solved?;
+        let Solved { x, report, earlier } = solved?;
         self.x = x;
+        self.earlier = earlier;
+        self.solve_rhs = rhs;
         let u = self.unit_displacement();
         self.unit_reactions = reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
         self.solves.push(ResolveRecord {

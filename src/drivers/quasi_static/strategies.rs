@@ -14,6 +14,7 @@ impl Run<'_> {
         let mut load_factor = 0.0;
         for event in 1..=self.settings.max_events {
             self.update_ratios(1.0);
+            self.decide_ranking(event);
             let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
             let critical = if largest > 0.0 {
                 1.0 / largest

@@ -1,0 +1,114 @@
+//! Which bonds are critical, decided beyond the error of an iterative re-solve.
+//!
+//! The event strategy breaks the bonds whose ratio at λ = 1 lies within the
+//! relative `tolerance` τ of the largest, `r_b ≥ (1 − τ) max_c r_c`. After a
+//! Krylov re-solve (the iterative route, or CG/GMRES with an old factor) the
+//! ratios carry the solve's error: with `r̃_b` computed from the solution and
+//! `|r̃_b − r_b| ≤ η_b`, the true largest ratio `M` lies in
+//! `[max(r̃ − η), max(r̃ + η)] = [M_lo, M_hi]`, and bond `b` is
+//!
+//! ```text
+//! surely critical      r̃_b − η_b ≥ (1 − τ) M_hi
+//! surely not critical  r̃_b + η_b < (1 − τ) M_lo
+//! ```
+//!
+//! The ranking is decided when every bond is one or the other. The error
+//! estimate comes from the solve itself: its checkpoint iterate
+//! ([`crate::solve::pipeline::Solved::earlier`]) has a residual
+//! [`crate::solve::pipeline::CHECKPOINT_FACTOR`] times larger, and while the iteration converges
+//! steadily its error is about that factor larger, so `η_b = |r_b(x_earlier) −
+//! r_b(x)|` overestimates the error of `r_b(x)` about as much. When a bond is
+//! undecided, the solution is improved by Krylov iterations (residual
+//! [`crate::solve::pipeline::CHECKPOINT_FACTOR`] times smaller, the previous solution becoming the
+//! estimate) until it is decided, up to [`MAX_TIGHTENING`] rounds or the
+//! round-off floor; a ranking still undecided then is broken as computed and
+//! counted in the run's log. Direct solves and exact factor updates are
+//! decided at round-off (ties within τ break together by construction).
+//! Checked in `tests/fracture_routes.rs`: the iterative and direct routes
+//! break the same bonds at the same events on a notched plate.
+
+use super::*;
+
+/// Rounds of tighter re-solves spent on one undecided ranking.
+pub(super) const MAX_TIGHTENING: usize = 4;
+
+/// How the event strategy's rankings were decided.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+pub struct RankingStats {
+    /// Rankings that followed a Krylov re-solve (and so were checked).
+    pub checked: usize,
+    /// Of those, rankings that needed tighter re-solves to be decided.
+    pub tightened: usize,
+    /// Rankings still undecided at the round-off floor or after
+    /// [`MAX_TIGHTENING`] rounds (broken as computed).
+    pub undecided: usize,
+}
+
+impl Run<'_> {
+    /// Makes the current ratios decide which bonds are critical (module
+    /// docs): after a Krylov re-solve, improves the solution until they do.
+    /// The tighter re-solves are recorded at `step`.
+    pub(super) fn decide_ranking(&mut self, step: usize) {
+        let earlier = self.earlier.take();
+        let krylov = self.solves.last().is_some_and(|s| s.report.iterations > 0);
+        if !krylov {
+            return;
+        }
+        self.ranking.checked += 1;
+        let mut earlier = earlier;
+        for round in 0..=MAX_TIGHTENING {
+            if let Some(e) = earlier.take() {
+                let estimate = self.ratios_of(&e);
+                if self.decided(&estimate) {
+                    if round > 0 {
+                        self.ranking.tightened += 1;
+                    }
+                    return;
+                }
+                if round == MAX_TIGHTENING {
+                    break;
+                }
+            }
+            let (pipeline, m) = self.system.parts();
+            let Some(improved) = pipeline.improve(m, &self.solve_rhs, &self.x) else {
+                break;
+            };
+            earlier = improved.earlier;
+            self.x = improved.x;
+            let u = self.unit_displacement();
+            self.unit_reactions =
+                reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
+            self.solves.push(ResolveRecord {
+                step,
+                bonds_broken: 0,
+                report: improved.report,
+            });
+            self.update_ratios(1.0);
+        }
+        self.ranking.undecided += 1;
+    }
+
+    /// The ratios at λ = 1 of the free unknowns `x`.
+    fn ratios_of(&self, x: &[f64]) -> Vec<f64> {
+        let u = self.unit_displacement_of(x);
+        let mut ratios = vec![0.0; self.ratios.len()];
+        self.criterion
+            .ratios(&self.model, &self.disc, &u, true, &mut ratios);
+        ratios
+    }
+
+    /// Whether every bond is surely critical or surely not, with the errors
+    /// `|ratios − estimate|` (module docs).
+    fn decided(&self, estimate: &[f64]) -> bool {
+        let tau = self.settings.tolerance;
+        let error = |b: usize| (self.ratios[b] - estimate[b]).abs();
+        let live = || (0..self.ratios.len()).filter(|&b| self.ratios[b] > 0.0);
+        let high = live().map(|b| self.ratios[b] + error(b)).fold(0.0, f64::max);
+        let low = live().map(|b| self.ratios[b] - error(b)).fold(0.0, f64::max);
+        let (surely_in, surely_out) = ((1.0 - tau) * high, (1.0 - tau) * low);
+        live().all(|b| {
+            let (r, e) = (self.ratios[b], error(b));
+            r - e >= surely_in || r + e < surely_out
+        })
+    }
+}
