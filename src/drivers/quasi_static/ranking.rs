@@ -59,7 +59,7 @@ impl Run<'_> {
         for round in 0..=MAX_TIGHTENING {
             if let Some(e) = earlier.take() {
                 let estimate = self.ratios_of(&e);
-                if self.decided(&estimate) {
+                if decided(&self.ratios, &estimate, self.settings.tolerance) {
                     if round > 0 {
                         self.ranking.tightened += 1;
                     }
@@ -97,18 +97,42 @@ impl Run<'_> {
         ratios
     }
 
-    /// Whether every bond is surely critical or surely not, with the errors
-    /// `|ratios − estimate|` (module docs).
-    fn decided(&self, estimate: &[f64]) -> bool {
-        let tau = self.settings.tolerance;
-        let error = |b: usize| (self.ratios[b] - estimate[b]).abs();
-        let live = || (0..self.ratios.len()).filter(|&b| self.ratios[b] > 0.0);
-        let high = live().map(|b| self.ratios[b] + error(b)).fold(0.0, f64::max);
-        let low = live().map(|b| self.ratios[b] - error(b)).fold(0.0, f64::max);
-        let (surely_in, surely_out) = ((1.0 - tau) * high, (1.0 - tau) * low);
-        live().all(|b| {
-            let (r, e) = (self.ratios[b], error(b));
-            r - e >= surely_in || r + e < surely_out
-        })
+}
+
+/// Whether every bond is surely critical or surely not (module docs), with
+/// `ratios` from the solution, errors `|ratios − estimate|` and the relative
+/// tie tolerance `tau`. Bonds whose ratio is zero (broken, or unstretched)
+/// take no part.
+fn decided(ratios: &[f64], estimate: &[f64], tau: f64) -> bool {
+    let error = |b: usize| (ratios[b] - estimate[b]).abs();
+    let live = || (0..ratios.len()).filter(|&b| ratios[b] > 0.0);
+    let high = live().map(|b| ratios[b] + error(b)).fold(0.0, f64::max);
+    let low = live().map(|b| ratios[b] - error(b)).fold(0.0, f64::max);
+    let (surely_in, surely_out) = ((1.0 - tau) * high, (1.0 - tau) * low);
+    live().all(|b| {
+        let (r, e) = (ratios[b], error(b));
+        r - e >= surely_in || r + e < surely_out
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::decided;
+
+    /// Two bonds a relative 1e-5 apart, tolerance 1e-6: decided while the
+    /// errors are far below the gap, undecided once they reach it; a bond tied
+    /// with the largest (within the tolerance) is decided as long as the
+    /// errors leave it inside the tie.
+    #[test]
+    fn a_ranking_is_decided_only_beyond_its_errors() {
+        let ratios = [1.0, 1.0 - 1e-5, 0.5, 0.0];
+        let off = |e: f64| ratios.map(|r| if r > 0.0 { r + e } else { r });
+        assert!(decided(&ratios, &off(1e-9), 1e-6));
+        assert!(!decided(&ratios, &off(5e-6), 1e-6));
+        let tied = [1.0, 1.0 - 1e-8, 0.5];
+        assert!(decided(&tied, &tied.map(|r| r - 1e-10), 1e-6));
+        assert!(!decided(&tied, &tied.map(|r| r - 1e-6), 1e-6));
+        // The exact answer (no error) is always decided.
+        assert!(decided(&ratios, &ratios, 1e-6));
     }
 }
