@@ -24,7 +24,7 @@
 //! round-off floor; a ranking still undecided then is broken as computed and
 //! counted in the run's log. Direct solves and exact factor updates are
 //! decided at round-off (ties within τ break together by construction).
-//! Checked in `tests/fracture_routes.rs`: the iterative and direct routes
+//! Checked in `tests/fracture.rs`: the iterative and direct routes
 //! break the same bonds at the same events on a notched plate.
 
 use super::*;
