@@ -100,8 +100,260 @@ def run(names):
             f.write(f"{time.time() - t0:.1f}\n")
 
 
+
+# ---------------------------------------------------------------- analysis
+VTK_T = {"Float64": "<f8", "Int64": "<i8", "UInt8": "u1", "Int32": "<i4"}
+D_TH = 0.2   # a clean planar cut leaves 0.39 on the rows beside it (m = 3): the front is at half of it
+
+
+def read_vtu(path, names=("points", "damage")):
+    s = open(path, "rb").read().decode()
+    out = {}
+    for m in re.finditer(r'<DataArray type="(\w+)" Name="(\w+)"([^>]*)>\s*([^<]*)</DataArray>', s):
+        t, n, attr, body = m.groups()
+        if n not in names:
+            continue
+        raw = base64.b64decode(body.strip())
+        nb = struct.unpack("<I", raw[:4])[0]
+        a = np.frombuffer(raw[4:4 + nb], dtype=VTK_T[t])
+        nc = re.search(r'NumberOfComponents="(\d+)"', attr)
+        out[n] = a.reshape(-1, int(nc.group(1))) if nc else a
+    return out
+
+
+def snapshots(d):
+    pvd = open(os.path.join(d, "series.pvd")).read()
+    return [(float(t), os.path.join(d, f)) for t, f in re.findall(r'timestep="([^"]+)"[^>]*file="([^"]+)"', pvd)]
+
+
+def run_dir(name):
+    d = os.path.join(OUT, name)
+    if os.path.isdir(d):
+        return d
+    part = glob.glob(os.path.join(OUT, f".{name}.partial-*"))
+    return part[0] if part else None
+
+
+def front_series(name, h):
+    """Per snapshot: crack front per z layer = largest x of a point in the two rows beside the
+    crack plane with damage >= D_TH (0.3 m, the initial tip, when none); the damaged points'
+    extent off the plane."""
+    d = run_dir(name)
+    rows = []
+    keep = {}
+    for t, f in snapshots(d) if os.path.exists(os.path.join(d, "series.pvd")) else \
+            [(int(re.search(r"(\d+)\.vtu", f).group(1)) * DT, f) for f in sorted(glob.glob(os.path.join(d, "step_*.vtu")))]:
+        v = read_vtu(f)
+        p, D = v["points"], v["damage"]
+        band = np.abs(p[:, 1] - H / 2) < h
+        zs = np.unique(np.round(p[:, 2], 9))
+        fr = []
+        for z in zs:
+            sel = band & (np.abs(p[:, 2] - z) < 1e-9) & (D >= D_TH)
+            fr.append(max(A0, p[sel, 0].max()) if sel.any() else A0)
+        fr = np.array(fr)
+        ahead = (p[:, 0] > A0) & (D > 0)
+        dam = D >= D_TH
+        off = dam & ~band
+        rows.append(dict(t=t, front_mean=fr.mean(), front_min=fr.min(), front_max=fr.max(),
+                         n_damaged_ahead=int(ahead.sum()), n_dam=int(dam.sum()), n_dam_off_plane=int(off.sum()),
+                         off_plane_ymin=float(p[off, 1].min()) if off.any() else np.nan,
+                         off_plane_ymax=float(p[off, 1].max()) if off.any() else np.nan,
+                         max_damage=float(D.max())))
+        keep[t] = (p, D)
+    return rows, keep
+
+
+def probe_arrivals(name, h):
+    """First time each probe (first row above the plane, 3 depths) has damage > 0 and >= D_TH."""
+    f = os.path.join(run_dir(name), "probes.csv")
+    if not os.path.exists(f):
+        return None
+    import csv
+    with open(f) as fh:
+        r = list(csv.reader(fh))
+    head, data = r[0], np.array(r[1:], dtype=float)
+    t = data[:, head.index("time")]
+    out = {}
+    for j, c in enumerate(head):
+        m = re.match(r"(p\d{3}_z\w+?)_damage$", c) or re.match(r"(p\d{3}_z\w+?)\.damage$", c)
+        if not m:
+            continue
+        k = int(m.group(1)[1:4]); zn = m.group(1).split("_", 1)[1]
+        x = A0 + h / 2 + k * h
+        any_ = np.nonzero(data[:, j] > 0)[0]; th = np.nonzero(data[:, j] >= D_TH)[0]
+        out[(zn, x)] = (t[any_[0]] if len(any_) else np.nan, t[th[0]] if len(th) else np.nan)
+    return out
+
+
+def smooth_speed(t, x, w=2):
+    """Speed from the front smoothed by a centred moving average over 2w+1 snapshots."""
+    xs = np.array([x[max(0, i - w):i + w + 1].mean() for i in range(len(x))])
+    return np.gradient(xs, t), xs
+
+
+def measure(name, h):
+    """Every number of the report for one run; writes results/<name>_front.csv."""
+    rows, keep = front_series(name, h)
+    t = np.array([r["t"] for r in rows]); xm = np.array([r["front_mean"] for r in rows])
+    os.makedirs(RESULTS, exist_ok=True)
+    with open(os.path.join(RESULTS, name + "_front.csv"), "w") as f:
+        ks = list(rows[0])
+        f.write(",".join(ks) + ",speed_smoothed\n")
+        v, xs = smooth_speed(t, xm)
+        for r, vv in zip(rows, v):
+            f.write(",".join(f"{r[k]:.6g}" for k in ks) + f",{vv:.6g}\n")
+    d = run_dir(name)
+    res = dict(run=name, mode=int(name[4]), spacing_mm=h * 1000, complete=os.path.basename(d) == name)
+    # initiation (a): first damage at a point ahead of the tip, probes (every 2 steps) and snapshots
+    arr = probe_arrivals(name, h)
+    if arr:
+        tip = [v[0] for (zn, x), v in arr.items() if abs(x - (A0 + h / 2)) < 1e-9]
+        res["init_first_bond_probe_us"] = np.nanmin(tip) * 1e6 if np.isfinite(tip).any() else np.nan
+        first_any = [v[0] for v in arr.values()]
+        res["first_damage_ahead_probe_us"] = np.nanmin(first_any) * 1e6 if np.isfinite(first_any).any() else np.nan
+    i = np.nonzero([r["n_damaged_ahead"] > 0 for r in rows])[0]
+    res["init_first_bond_snapshot_us"] = t[i[0]] * 1e6 if len(i) else np.nan
+    # initiation (b): the mean front one spacing ahead of the tip
+    i = np.nonzero(xm >= A0 + h)[0]
+    res["init_front_one_spacing_us"] = t[i[0]] * 1e6 if len(i) else np.nan
+    # end of propagation: the front within one spacing of the far end, else the last snapshot
+    j = np.nonzero(xm >= L - h)[0]
+    res["front_reaches_end_us"] = t[j[0]] * 1e6 if len(j) else np.nan
+    res["front_final_mean_m"] = xm[-1]; res["front_final_min_m"] = rows[-1]["front_min"]
+    res["front_final_max_m"] = rows[-1]["front_max"]
+    res["t_last_us"] = t[-1] * 1e6
+    if len(i):
+        i0 = i[0]; i1 = j[0] if len(j) else len(t) - 1
+        res["mean_speed_m_s"] = (xm[i1] - xm[i0]) / (t[i1] - t[i0]) if i1 > i0 else np.nan
+        v, xs = smooth_speed(t, xm)
+        res["peak_speed_m_s"] = v[i0:i1 + 1].max()
+        # arrests: after initiation and before the end, spans where the mean front moves < h/4 over
+        # >= 3 snapshots (~49 us)
+        stops = []
+        k = i0
+        while k < i1:
+            k2 = k
+            while k2 + 1 <= i1 and xm[k2 + 1] - xm[k] < h / 4:
+                k2 += 1
+            if k2 - k >= 3 and k2 < i1:
+                stops.append((t[k] * 1e6, t[k2] * 1e6))
+            k = max(k2, k + 1)
+        res["arrests_us"] = ";".join(f"{a:.0f}-{b:.0f}" for a, b in stops)
+        if stops:
+            moving = (xm[i1] - xm[i0]) / ((t[i1] - t[i0]) - sum((b - a) * 1e-6 for a, b in stops))
+            res["mean_speed_moving_m_s"] = moving
+    res["max_off_plane_damaged_pts"] = max(r["n_dam_off_plane"] for r in rows)
+    res["off_plane_y_range_m"] = f"{np.nanmin([r['off_plane_ymin'] for r in rows]):.4g}-{np.nanmax([r['off_plane_ymax'] for r in rows]):.4g}" \
+        if any(r["n_dam_off_plane"] for r in rows) else ""
+    sj = os.path.join(d, "summary.json")
+    if os.path.exists(sj):
+        S = json.load(open(sj))
+        res.update(points=S["points"], bonds=S["bonds"], steps=S["steps"], bonds_broken=S["bonds_broken"],
+                   time_per_step_s=S["timings"]["integration"] / S["steps"], wall_s=S["total_seconds"],
+                   setup_s=S["timings"]["setup"], max_balance_error=S["max_balance_error"],
+                   external_work_J=S["final_record"]["external_work"], kinetic_J=S["final_record"]["kinetic"],
+                   internal_work_J=S["final_record"]["strain"], threads=S["threads"])
+    return res, rows, keep
+
+
+def plot_run(name, h, res, rows, keep):
+    import matplotlib; matplotlib.use("Agg"); import matplotlib.pyplot as plt
+    ts = sorted(keep)
+    # four times: initiation, two during growth, the last
+    t0 = res.get("init_front_one_spacing_us", np.nan)
+    cand = [ts[len(ts) // 4], ts[len(ts) // 2], ts[3 * len(ts) // 4], ts[-1]]
+    if np.isfinite(t0):
+        i0 = min(range(len(ts)), key=lambda i: abs(ts[i] * 1e6 - t0))
+        step = max(1, (len(ts) - 1 - i0) // 3)
+        cand = [ts[min(i0 + k * step, len(ts) - 1)] for k in range(3)] + [ts[-1]]
+    fig, ax = plt.subplots(4, 2, figsize=(13, 9.5), gridspec_kw=dict(width_ratios=[1, 1]))
+    ax = ax.T
+    for c, tt in enumerate(cand):
+        p, D = keep[tt]
+        band = np.abs(p[:, 1] - H / 2) < h
+        # crack plane (x-z): the larger damage of the two rows beside the plane
+        nx, nz = round(L / h), round(B / h)
+        img = np.zeros((nz, nx))
+        ix = np.clip((p[band, 0] / h).astype(int), 0, nx - 1); iz = np.clip((p[band, 2] / h).astype(int), 0, nz - 1)
+        np.maximum.at(img, (iz, ix), D[band])
+        a = ax[0, c]; im = a.imshow(img, origin="lower", extent=[0, L, 0, B], vmin=0, vmax=0.6, cmap="inferno", aspect="equal")
+        a.axvline(A0, color="c", lw=0.8, ls="--"); a.set_title(f"t = {tt*1e6:.0f} µs: crack plane (rows beside y = 0.1)", fontsize=9)
+        a.set_xlabel("x [m]"); a.set_ylabel("z [m]")
+        # side view (x-y): the largest damage over z
+        ny = round(H / h)
+        img2 = np.zeros((ny, nx))
+        ix = np.clip((p[:, 0] / h).astype(int), 0, nx - 1); iy = np.clip((p[:, 1] / h).astype(int), 0, ny - 1)
+        np.maximum.at(img2, (iy, ix), D)
+        a = ax[1, c]; a.imshow(img2, origin="lower", extent=[0, L, 0, H], vmin=0, vmax=0.6, cmap="inferno", aspect="equal")
+        a.plot([0, A0], [H / 2, H / 2], "c--", lw=0.8); a.set_title(f"t = {tt*1e6:.0f} µs: side view, max damage over z", fontsize=9)
+        a.set_xlabel("x [m]"); a.set_ylabel("y [m]")
+    fig.colorbar(im, ax=ax, shrink=0.5, label="damage")
+    fig.subplots_adjust(hspace=0.45)
+    fig.suptitle(f"{name}: damage (initial crack x < 0.3 m at y = 0.1, dashed)")
+    fig.savefig(os.path.join(HERE, f"{name}_damage.png"), dpi=80)
+    plt.close(fig)
+
+
+def plot_fronts(results, allrows, tag):
+    import matplotlib; matplotlib.use("Agg"); import matplotlib.pyplot as plt
+    names = [r["run"] for r in results]
+    fig, ax = plt.subplots(2, 3, figsize=(15, 7.5), sharex=True)
+    for mode in (1, 2, 3):
+        P = PAPER[mode]
+        for r in results:
+            if r["mode"] != mode:
+                continue
+            rows = allrows[r["run"]]
+            t = np.array([q["t"] for q in rows]) * 1e6; xm = np.array([q["front_mean"] for q in rows])
+            a = ax[0, mode - 1]
+            l, = a.plot(t, xm, "-o", ms=2.5, label=r["run"])
+            a.fill_between(t, [q["front_min"] for q in rows], [q["front_max"] for q in rows], color=l.get_color(), alpha=0.2)
+            v, _ = smooth_speed(t * 1e-6, xm)
+            ax[1, mode - 1].plot(t, v, "-", color=l.get_color(), label=r["run"])
+        for a in ax[:, mode - 1]:
+            a.axvline(P["init"] * 1e6, color="k", ls="--", lw=1, label=f"paper initiation {P['init']*1e6:.0f} µs")
+            if mode == 1:
+                a.axvspan(P["arrest"] * 1e6, P["restart"] * 1e6, color="grey", alpha=0.25, label="paper: arrest 590-630 µs")
+        ax[1, mode - 1].axhline(P["speed"], color="k", ls=":", label=f"paper mean speed {P['speed']} m/s")
+        ax[1, mode - 1].axhline(C_R, color="r", ls=":", lw=0.8, label=f"c_R = {C_R:.0f} m/s")
+        ax[0, mode - 1].set_title(f"mode {'I' * mode if mode < 3 else 'III'}: crack front (mean over z; band min-max)")
+        ax[0, mode - 1].set_ylabel("front x [m]"); ax[0, mode - 1].set_ylim(0.29, 0.51)
+        ax[1, mode - 1].set_ylabel("speed [m/s] (smoothed mean front)"); ax[1, mode - 1].set_xlabel("t [µs]")
+        ax[1, mode - 1].set_ylim(bottom=0)
+        ax[0, mode - 1].legend(fontsize=7); ax[1, mode - 1].legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, f"fronts_{tag}.png"), dpi=80)
+    plt.close(fig)
+
+
+def analyse(names=None):
+    if names is None:
+        names = sorted({os.path.basename(p).lstrip(".").split(".partial")[0]
+                        for p in glob.glob(os.path.join(OUT, "*mode*")) if os.path.isdir(p)})
+    results, allrows = [], {}
+    for n in names:
+        h = int(re.search(r"_(\d+)mm_", n).group(1)) / 1000
+        res, rows, keep = measure(n, h)
+        plot_run(n, h, res, rows, keep)
+        results.append(res); allrows[n] = rows
+        print(json.dumps(res, default=float))
+    keys = []
+    for r in results:
+        keys += [k for k in r if k not in keys]
+    with open(os.path.join(RESULTS, "summary.csv"), "w") as f:
+        f.write(",".join(keys) + "\n")
+        for r in results:
+            f.write(",".join(f"{r[k]:.6g}" if isinstance(r.get(k), (float, np.floating)) else str(r.get(k, "")) for k in keys) + "\n")
+    for tag in sorted({n.split("_", 1)[1] for n in names}):
+        sel = [r for r in results if r["run"].endswith(tag)]
+        plot_fronts(sel, allrows, tag)
+
+
 if __name__ == "__main__":
     if len(sys.argv) > 1 and sys.argv[1] == "scenes":
         write_scenes()
     elif len(sys.argv) > 1 and sys.argv[1] == "run":
         run(sys.argv[2:])
+    else:
+        analyse(sys.argv[1:] or None)
