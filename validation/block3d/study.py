@@ -192,6 +192,9 @@ def smooth_speed(t, x, w=2):
     return np.gradient(xs, t), xs
 
 
+ARR = {}
+
+
 def measure(name, h):
     """Every number of the report for one run; writes results/<name>_front.csv."""
     rows, keep = front_series(name, h)
@@ -207,6 +210,7 @@ def measure(name, h):
     res = dict(run=name, mode=int(name[4]), spacing_mm=h * 1000, complete=os.path.basename(d) == name)
     # initiation (a): first damage at a point ahead of the tip, probes (every 2 steps) and snapshots
     arr = probe_arrivals(name, h)
+    ARR[name] = arr
     if arr:
         tip = [v[0] for (zn, x), v in arr.items() if abs(x - (A0 + h / 2)) < 1e-9]
         res["init_first_bond_probe_us"] = np.nanmin(tip) * 1e6 if np.isfinite(tip).any() else np.nan
@@ -228,13 +232,13 @@ def measure(name, h):
         res["mean_speed_m_s"] = (xm[i1] - xm[i0]) / (t[i1] - t[i0]) if i1 > i0 else np.nan
         v, xs = smooth_speed(t, xm)
         res["peak_speed_m_s"] = v[i0:i1 + 1].max()
-        # arrests: after initiation and before the end, spans where the mean front moves < h/4 over
-        # >= 3 snapshots (~49 us)
+        # arrests: after initiation and before the end, spans of >= 3 snapshot intervals (~49 us)
+        # in which the mean front moves by at most one spacing (mean speed <= ~100 m/s)
         stops = []
         k = i0
         while k < i1:
             k2 = k
-            while k2 + 1 <= i1 and xm[k2 + 1] - xm[k] < h / 4:
+            while k2 + 1 <= i1 and xm[k2 + 1] - xm[k] <= h + 1e-9:
                 k2 += 1
             if k2 - k >= 3 and k2 < i1:
                 stops.append((t[k] * 1e6, t[k2] * 1e6))
@@ -243,6 +247,20 @@ def measure(name, h):
         if stops:
             moving = (xm[i1] - xm[i0]) / ((t[i1] - t[i0]) - sum((b - a) * 1e-6 for a, b in stops))
             res["mean_speed_moving_m_s"] = moving
+    if arr:
+        # mid-depth probes: arrival (damage >= D_TH) against x; the longest waits between neighbours
+        xa = sorted((x, v[1]) for (zn, x), v in arr.items() if zn == "zmid" and np.isfinite(v[1]))
+        if len(xa) > 2:
+            xs_, ts_ = np.array(xa).T
+            order = np.argsort(ts_)
+            gaps = np.diff(ts_)
+            big = np.argsort(gaps)[::-1][:3]
+            res["probe_longest_waits_us"] = ";".join(f"x={xs_[b]:.4f}->{xs_[b+1]:.4f}:{ts_[b]*1e6:.0f}-{ts_[b+1]*1e6:.0f}"
+                                                      for b in sorted(big) if gaps[b] > 0)
+            res["probe_mid_first_us"] = ts_.min() * 1e6; res["probe_mid_last_us"] = ts_.max() * 1e6
+            res["probe_mid_last_x"] = xs_[np.argmax(ts_)]
+            if len(xs_) > 1 and ts_[-1] > ts_[0]:
+                res["probe_mid_mean_speed_m_s"] = (xs_[-1] - xs_[0]) / (ts_[-1] - ts_[0])
     res["max_off_plane_damaged_pts"] = max(r["n_dam_off_plane"] for r in rows)
     res["off_plane_y_range_m"] = f"{np.nanmin([r['off_plane_ymin'] for r in rows]):.4g}-{np.nanmax([r['off_plane_ymax'] for r in rows]):.4g}" \
         if any(r["n_dam_off_plane"] for r in rows) else ""
@@ -309,6 +327,13 @@ def plot_fronts(results, allrows, tag):
             a = ax[0, mode - 1]
             l, = a.plot(t, xm, "-o", ms=2.5, label=r["run"])
             a.fill_between(t, [q["front_min"] for q in rows], [q["front_max"] for q in rows], color=l.get_color(), alpha=0.2)
+            arr = ARR.get(r["run"])
+            if arr:
+                for zn, mk in (("z0", "v"), ("zmid", "x"), ("z1", "^")):
+                    xa = np.array([(x, v[1]) for (z, x), v in arr.items() if z == zn and np.isfinite(v[1])])
+                    if len(xa):
+                        a.plot(xa[:, 1] * 1e6, xa[:, 0], mk, ms=3, color=l.get_color(), alpha=0.6,
+                               label=f"probe arrivals, {zn}" if r is results[0] else None)
             v, _ = smooth_speed(t * 1e-6, xm)
             ax[1, mode - 1].plot(t, v, "-", color=l.get_color(), label=r["run"])
         for a in ax[:, mode - 1]:
