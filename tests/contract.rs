@@ -8,6 +8,7 @@ mod common;
 
 use common::*;
 use dhpd::assembly::forces::internal_forces;
+use dhpd::assembly::stiffness::row_abs_sums;
 use dhpd::discretization::Discretization;
 use dhpd::model::bond_based::BondBased;
 use dhpd::model::shear::Shear;
@@ -171,6 +172,22 @@ fn check_symmetric<M: Model>(model: &M, disc: &Discretization) {
     }
 }
 
+/// The matrix-free Gershgorin row sums (the explicit driver's stable time step)
+/// equal `Σ_c |K_rc|` of the assembled tangent, to round-off of the sum.
+fn check_row_sums<M: Model>(model: &M, disc: &Discretization) {
+    let d = disc.d;
+    let k = dense_stiffness(model, disc);
+    let sums = row_abs_sums(model, disc);
+    for (r, row) in k.iter().enumerate() {
+        let expected: f64 = row.iter().map(|v| v.abs()).sum();
+        let got = sums[r / d][r % d];
+        assert!(
+            (got - expected).abs() <= 1e-12 * expected,
+            "row {r}: matrix-free {got:e}, assembled {expected:e}"
+        );
+    }
+}
+
 fn bond_based(scene: &Scene, disc: &Discretization) -> BondBased {
     BondBased::new(
         disc,
@@ -210,6 +227,10 @@ macro_rules! contract_tests {
             #[test]
             fn forces_sum_to_zero() {
                 each(|s, d| check_zero_net_force(&$build(s, d), d));
+            }
+            #[test]
+            fn matrix_free_row_sums() {
+                each(|s, d| check_row_sums(&$build(s, d), d));
             }
             #[test]
             fn symmetry() {

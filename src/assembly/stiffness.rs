@@ -330,6 +330,71 @@ pub fn fill_columns<M: Model>(
         );
 }
 
+/// Gershgorin bound of the tangent of `model` on every degree of freedom (no
+/// constraints): `Σ_c |K_rc|` per point and component, without storing `K`.
+///
+/// The columns are built point by point as in [`fill_columns`] and their
+/// absolute values scattered into per-thread row sums, so memory stays at a few
+/// vectors of the point count (the assembled tangent of a 3D shear-model body,
+/// which couples neighbours of neighbours, takes tens of GiB).
+pub fn row_abs_sums<M: Model>(model: &M, disc: &Discretization) -> Vec<[f64; 3]> {
+    let n = disc.points.len();
+    let d = disc.d;
+    let chunk = n.div_ceil(4 * rayon::current_num_threads()).max(1);
+    let starts: Vec<usize> = (0..n).step_by(chunk).collect();
+    starts
+        .into_par_iter()
+        .map(|start| {
+            let mut sums = vec![[0.0; 3]; n];
+            // The slot of each row point in the current column (u32::MAX = none).
+            let mut slot = vec![u32::MAX; n];
+            let mut rows: Vec<usize> = Vec::new();
+            let mut acc: Vec<Block> = Vec::new();
+            for q in start..(start + chunk).min(n) {
+                let mut add = |p: usize, block: &Block| {
+                    if slot[p] == u32::MAX {
+                        slot[p] = rows.len() as u32;
+                        rows.push(p);
+                        acc.push([[0.0; 3]; 3]);
+                    }
+                    let k = slot[p] as usize;
+                    for r in 0..d {
+                        for c in 0..d {
+                            acc[k][r][c] += block[r][c];
+                        }
+                    }
+                };
+                model.tangent_column(disc, q, Column::Owner, &mut add);
+                for &(owner, bond) in disc.bonds.incoming(q) {
+                    model.tangent_column(
+                        disc,
+                        owner as usize,
+                        Column::Neighbour(bond as usize),
+                        &mut add,
+                    );
+                }
+                for (k, &p) in rows.iter().enumerate() {
+                    for r in 0..d {
+                        sums[p][r] += (0..d).map(|c| acc[k][r][c].abs()).sum::<f64>();
+                    }
+                    slot[p] = u32::MAX;
+                }
+                rows.clear();
+                acc.clear();
+            }
+            sums
+        })
+        .reduce_with(|mut a, b| {
+            for (x, y) in a.iter_mut().zip(&b) {
+                for c in 0..3 {
+                    x[c] += y[c];
+                }
+            }
+            a
+        })
+        .unwrap_or_default()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

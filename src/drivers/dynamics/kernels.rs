@@ -786,34 +786,6 @@ impl TangentKernel {
         })
     }
 
-    /// Gershgorin bound per degree of freedom: `Σ_c |K_rc|` for each point and component.
-    pub fn row_sums(&self) -> Vec<[f64; 3]> {
-        row_sums(
-            &self.disc,
-            &self.dofs,
-            &self.pattern,
-            &self.stiffness,
-            &self.transpose,
-        )
-    }
-}
-
-/// `Σ_c |K_rc|` per point and component for a `K` on every degree of freedom.
-pub fn row_sums(
-    disc: &Discretization,
-    dofs: &DofMap,
-    pattern: &Pattern,
-    k: &Stiffness,
-    transpose: &[usize],
-) -> Vec<[f64; 3]> {
-    let mut out = vec![[0.0; 3]; disc.points.len()];
-    for (r, &(i, c)) in dofs.free_dofs.iter().enumerate() {
-        // Row r of K is column r of Kᵀ.
-        out[i as usize][c as usize] = (pattern.col_ptr[r]..pattern.col_ptr[r + 1])
-            .map(|q| k.values[transpose[q]].abs())
-            .sum();
-    }
-    out
 }
 
 impl ForceField for TangentKernel {
