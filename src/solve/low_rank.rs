@@ -16,6 +16,8 @@
 //! failing pivot of `S` flags a mechanism (the caller then factorises afresh,
 //! which names the point).
 
+use rayon::prelude::*;
+
 /// A rank-one term `k g gᵀ` removed from the matrix: `g` as `(free unknown, value)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Term {
@@ -27,6 +29,9 @@ pub struct Term {
 
 /// Pivot of `S`, relative to its diagonal entry, below which `K` counts as singular.
 const PIVOT_RATIO: f64 = 1e-12;
+
+/// Rows of `x = y + Z w` one thread updates at a time (32 KiB of `x`).
+const APPLY_CHUNK: usize = 4096;
 
 /// The terms removed since the last factorisation and what their solves cost.
 #[derive(Debug, Default)]
@@ -129,10 +134,18 @@ impl LowRank {
             let s: f64 = (a + 1..k).map(|q| self.s_factor[q][a] * w[q]).sum();
             w[a] = (w[a] - s) / self.s_factor[a][a];
         }
+        // x = y + Z w, by chunks of rows in parallel; every entry sums the
+        // columns in order, as a sequential loop would.
         let mut x = y.to_vec();
-        for (column, &wa) in self.z.iter().zip(&w) {
-            x.iter_mut().zip(column).for_each(|(xi, zi)| *xi += wa * zi);
-        }
+        x.par_chunks_mut(APPLY_CHUNK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                let start = c * APPLY_CHUNK;
+                for (column, &wa) in self.z.iter().zip(&w) {
+                    let z = &column[start..start + chunk.len()];
+                    chunk.iter_mut().zip(z).for_each(|(xi, zi)| *xi += wa * zi);
+                }
+            });
         x
     }
 }

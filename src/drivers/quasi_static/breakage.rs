@@ -16,6 +16,9 @@ impl Run<'_> {
                 self.touched.push(owner);
                 self.touched.push(self.disc.bonds.neighbour[b] as usize);
                 self.recent.push(b);
+                if let Some(unsearched) = &mut self.unsearched {
+                    unsearched.push(b);
+                }
                 count += 1;
             }
         }
@@ -162,9 +165,42 @@ impl Run<'_> {
             .collect()
     }
 
+    /// Whether the two ends of every bond in `broken` are still linked through
+    /// intact bonds, directly (the other end's bond) or through a common
+    /// neighbour. Then no piece broke off: removing a link whose ends stay
+    /// connected leaves the connected pieces as they were, whatever the order
+    /// of removal. A `false` only means that the whole search must run.
+    fn still_linked(&self, broken: &[usize]) -> bool {
+        let bonds = &self.disc.bonds;
+        let linked = |i: usize| {
+            bonds
+                .owned_by(i)
+                .filter(|&b| bonds.intact[b])
+                .map(|b| bonds.neighbour[b] as usize)
+                .chain(
+                    bonds
+                        .incoming(i)
+                        .iter()
+                        .filter(|&&(_, b)| bonds.intact[b as usize])
+                        .map(|&(o, _)| o as usize),
+                )
+        };
+        broken.iter().all(|&b| {
+            let i = bonds.offsets.partition_point(|&o| o <= b) - 1;
+            let j = bonds.neighbour[b] as usize;
+            let mut near: Vec<usize> = linked(i).collect();
+            near.sort_unstable();
+            linked(j).any(|k| k == i || near.binary_search(&k).is_ok())
+        })
+    }
+
     /// Holds the pieces that no support holds any more; returns the reason to
     /// stop when such a piece carries an applied load.
     pub(super) fn hold_free_pieces(&mut self, step: usize, load_factor: f64) -> Option<String> {
+        match self.unsearched.replace(Vec::new()) {
+            Some(broken) if self.still_linked(&broken) => return None,
+            _ => {}
+        }
         let u = self.displacement(load_factor);
         for piece in rigid_modes::unheld_bodies(&self.disc, &self.dofs) {
             // Fully prescribed points need no holding (a lone one has a

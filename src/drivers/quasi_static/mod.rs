@@ -275,6 +275,9 @@ struct Run<'s> {
     touched: Vec<usize>,
     /// Bonds broken since the last assembly.
     recent: Vec<usize>,
+    /// Bonds broken since the last search for pieces broken free
+    /// ([`Run::hold_free_pieces`]); `None` before the first search.
+    unsearched: Option<Vec<usize>>,
     /// Points held since the last assembly.
     newly_held: Vec<usize>,
     /// Right-hand side at λ = 1 (before pinning).
@@ -397,6 +400,7 @@ impl<'s> Run<'s> {
             pending: 0,
             touched: Vec::new(),
             recent: Vec::new(),
+            unsearched: None,
             newly_held: Vec::new(),
             rhs: Vec::new(),
             solve_rhs: Vec::new(),
