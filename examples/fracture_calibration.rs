@@ -8,6 +8,7 @@
 //! cargo run --release --example fracture_calibration -- table ramp   # the same with the ramp of 000 Eq. A.1
 //! cargo run --release --example fracture_calibration -- independence # angle, height, E, G₀, spacing
 //! cargo run --release --example fracture_calibration -- check        # dissipation calibration: D = 1
+//! cargo run --release --example fracture_calibration -- 3d [m ...]    # bond-based 3D strip (default m = 3.015)
 //! ```
 //!
 //! The specimen is `dhpd::validation::fracture::Strip`: a long strip split from an
@@ -179,6 +180,27 @@ fn modes(m: f64, only: Option<&str>) {
     }
 }
 
+/// `D` of the bond-based model in 3D: a strip 14 spacings deep, `D` booked in
+/// its bulk; the profile through the depth shows the faces.
+fn three_d(ms: &[f64]) {
+    let mut csv = String::from(HEADER);
+    for &m in ms {
+        let s = Strip::new_3d(m);
+        let r = measure(&s);
+        row(&mut csv, "3d", &s, &r);
+        write("calibration_3d_bond_based.csv", &csv);
+        let mut depth = String::from("z_over_spacing,dissipated_over_g0\n");
+        for (k, v) in r.depth_profile.iter().enumerate() {
+            let _ = writeln!(depth, "{},{v:.6}", k as f64 + 0.5);
+        }
+        write(
+            &format!("calibration_depth_profile_{}.csv", s.name()),
+            &depth,
+        );
+        println!("  through the depth (per spacing): {:.3?}", r.depth_profile);
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let model: &'static str = if args.iter().any(|a| a == "shear") {
@@ -206,6 +228,10 @@ fn main() {
             args.get(2).map(String::as_str),
         ),
         Some("independence") => independence(model, 3.015),
-        _ => eprintln!("usage: fracture_calibration one [m]|table [overlap|none|ramp]|independence|check [shear]"),
+        Some("3d") => {
+            let ms: Vec<f64> = args[1..].iter().filter_map(|a| a.parse().ok()).collect();
+            three_d(if ms.is_empty() { &[3.015] } else { &ms });
+        }
+        _ => eprintln!("usage: fracture_calibration one [m]|table [overlap|none|ramp]|independence|check [shear]|3d [m ...]"),
     }
 }

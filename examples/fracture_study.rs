@@ -678,58 +678,67 @@ fn write_damage(name: &str, s: &QuasiStaticSolution) {
     write(&format!("damage_{name}.csv"), &t);
 }
 
-/// A 3D notched bar (bond-based): the peak load per unit depth against the
-/// LEFM load for ν = 1/4 in plane stress and plane strain (the bounds of a
-/// plate of finite depth; FEM, clamped grips).
-fn three_d(quick: bool) {
+/// A 3D notched bar: the peak load per unit depth against the 3D FEM reference
+/// of the same bar and grips (`fem/reference_sent3d.json`, scikit-fem P2
+/// tetrahedra), bond-based (ν = 1/4) and shear (ν = 1/3), with the continuum and
+/// the dissipation calibration (3D bond-based: `D` of the 3D strip).
+fn three_d(quick: bool, only: Option<&str>) {
     let json: serde_json::Value = serde_json::from_str(
-        &std::fs::read_to_string("validation/fracture/fem/reference_sent.json").unwrap(),
+        &std::fs::read_to_string("validation/fracture/fem/reference_sent3d.json").unwrap(),
     )
     .unwrap();
-    let at_half = |setting: &str| {
-        let case = &json["materials"][setting];
-        let a = case["a_over_W"].as_array().unwrap();
-        let k = a
-            .iter()
-            .position(|v| (v.as_f64().unwrap() - 0.5).abs() < 1e-12)
-            .unwrap();
-        // P_c = P(Δ = 1) sqrt(G_c / G(Δ = 1)).
-        case["P_per_unit_delta"][k].as_f64().unwrap()
-            * (FRACTURE_ENERGY / case["G_J"][k].as_f64().unwrap()).sqrt()
+    let fem = |depth: f64, nu: &str| {
+        json["results"][format!("T_{depth}")][nu]["P_c_per_depth"]
+            .as_f64()
+            .unwrap_or_else(|| panic!("no FEM reference for depth {depth}, {nu}"))
     };
-    let (stress, strain) = (
-        at_half("plane_stress_nu_1/4"),
-        at_half("plane_strain_nu_1/4"),
-    );
-    println!("LEFM, ν = 1/4: plane stress {stress:.4e} N/m, plane strain {strain:.4e} N/m");
     let mut csv = String::from(
-        "cells,depth,points,peak_per_depth,lefm_plane_stress,lefm_plane_strain,seconds\n",
+        "model,calibration,cells,depth,points,peak_per_depth,fem_3d,error,first_bond_critical_per_depth,seconds\n",
     );
-    let grid: &[(usize, f64)] = if quick {
-        &[(20, 0.02)]
+    let grid: &[(&str, &str, usize, f64)] = if quick {
+        &[("bond_based", "dissipation", 20, 0.02)]
     } else {
-        &[(20, 0.02), (20, 0.04), (30, 0.03)]
+        &[
+            ("bond_based", "continuum", 20, 0.02),
+            ("bond_based", "dissipation", 20, 0.02),
+            ("bond_based", "continuum", 20, 0.04),
+            ("bond_based", "dissipation", 20, 0.04),
+            ("bond_based", "continuum", 30, 0.03),
+            ("bond_based", "dissipation", 30, 0.03),
+            ("shear", "continuum", 20, 0.02),
+        ]
     };
-    for &(cells, depth) in grid {
-        let mut case = Sent::new("bond_based", cells, 3.015);
+    let file = only.map_or(String::from("three_d.csv"), |o| format!("three_d_{o}.csv"));
+    for &(model, calibration, cells, depth) in grid {
+        // `3d continuum`, `3d dissipation`, `3d shear`: one part of the table,
+        // in its own file.
+        if only.is_some_and(|o| o != calibration && o != model) {
+            continue;
+        }
+        let mut case = Sent::new(model, cells, 3.015);
         case.depth = Some(depth);
+        case.calibration = calibration;
         case.stop_after_peak = Some(0.7);
         let o = run(&case);
+        let reference = fem(depth, if model == "shear" { "nu_1/3" } else { "nu_1/4" });
         let per_depth = o.peak / depth;
         println!(
-            "3D W/Δx = {cells}, depth {depth} m: {} points, peak {per_depth:.4e} N/m ({:+.1} % plane stress, {:+.1} % plane strain), {:.1} s",
+            "3D {model} {calibration} W/Δx = {cells}, depth {depth} m: {} points, peak {per_depth:.4e} N/m \
+             ({:+.1} % of the 3D FEM {reference:.4e}), {:.1} s",
             o.points,
-            100.0 * (per_depth / stress - 1.0),
-            100.0 * (per_depth / strain - 1.0),
+            100.0 * (per_depth / reference - 1.0),
             o.seconds
         );
         let _ = writeln!(
             csv,
-            "{cells},{depth},{},{per_depth:.6e},{stress:.6e},{strain:.6e},{:.2}",
-            o.points, o.seconds
+            "{model},{calibration},{cells},{depth},{},{per_depth:.6e},{reference:.6e},{:.5},{:.6e},{:.2}",
+            o.points,
+            per_depth / reference - 1.0,
+            o.first_break / depth,
+            o.seconds
         );
+        write(&file, &csv);
     }
-    write("three_d.csv", &csv);
 }
 
 /// The scene files of every case the report shows.
@@ -829,7 +838,7 @@ fn main() {
                 .unwrap_or(0),
         ),
         Some("kink_strategies") => kink_strategies(),
-        Some("3d") => three_d(quick),
+        Some("3d") => three_d(quick, args.get(1).map(String::as_str)),
         Some("scenes") => scenes(),
         _ => eprintln!("usage: fracture_study lefm|energy|band|strategies|kink|kink_strategies|3d|scenes [bond_based|shear] [quick]"),
     }

@@ -375,6 +375,10 @@ pub struct Strip {
     pub youngs_modulus: f64,
     /// Fracture energy G₀ (J/m²).
     pub fracture_energy: f64,
+    /// 3D: the strip's depth along `z` in spacings (the pre-crack runs through
+    /// it; `D` counts only bonds whose midpoints lie in the bulk, away from the
+    /// faces `z = 0` and `z = depth`, on the regular grid); `0`: 2D.
+    pub depth_cells: usize,
 }
 
 impl Strip {
@@ -397,7 +401,41 @@ impl Strip {
             notch_cells: 20,
             youngs_modulus: YOUNGS_MODULUS,
             fracture_energy: FRACTURE_ENERGY,
+            depth_cells: 0,
         }
+    }
+
+    /// A bond-based 3D strip, mode I, continuum calibration: 48 × 12 spacings
+    /// with a 10-spacing notch, 14 spacings deep (`Δx = 1 mm`).
+    pub fn new_3d(horizon_factor: f64) -> Self {
+        Self {
+            dimension: "3d",
+            length_cells: 48,
+            height_cells: 12,
+            notch_cells: 10,
+            depth_cells: 14,
+            ..Self::new("bond_based", horizon_factor)
+        }
+    }
+
+    /// Strip depth (m; 0 in 2D).
+    pub fn depth(&self) -> f64 {
+        self.depth_cells as f64 * self.spacing
+    }
+
+    /// The bulk along `z` where energy is booked, `[start, end)`: in 3D, whole
+    /// spacings more than 1.5 horizons from both faces (a bond's end is then more
+    /// than a horizon from them), edges a quarter spacing off the bond midpoints;
+    /// `None` in 2D.
+    fn bulk(&self) -> Option<(f64, f64)> {
+        (self.depth_cells > 0).then(|| {
+            let (h, margin) = (self.spacing, 1.5 * self.horizon());
+            let start = ((margin / h).ceil() + 0.25) * h;
+            (
+                start,
+                start + ((self.depth() - margin - start) / h).floor() * h,
+            )
+        })
     }
 
     /// Strip length (m).
@@ -451,6 +489,9 @@ impl Strip {
         if self.calibration != "continuum" {
             let _ = write!(name, "_{}", self.calibration);
         }
+        if self.depth_cells > 0 {
+            let _ = write!(name, "_3d_depth{}", self.depth_cells);
+        }
         name.replace('.', "p")
     }
 
@@ -461,7 +502,7 @@ impl Strip {
 
     /// The point-file text of the rotated lattice (`None` on the regular grid).
     pub fn point_file(&self) -> Option<String> {
-        (self.angle != 0.0).then(|| {
+        (self.angle != 0.0 && self.depth_cells == 0).then(|| {
             rotated_lattice(
                 self.spacing,
                 self.angle,
@@ -477,11 +518,21 @@ impl Strip {
         let h = self.spacing;
         let half = 0.5 * self.height_cells as f64 * h;
         let (top, bottom) = (half + self.grip(), -half - self.grip());
+        let depth = self.depth();
+        let three_d = self.depth_cells > 0;
         let slab = |y0: f64, y1: f64| {
-            format!(
-                "{{ min = [-1.0, {y0:e}], max = [{:e}, {y1:e}] }}",
-                self.length() + 1.0
-            )
+            if three_d {
+                format!(
+                    "{{ min = [-1.0, {y0:e}, -1.0], max = [{:e}, {y1:e}, {:e}] }}",
+                    self.length() + 1.0,
+                    depth + 1.0
+                )
+            } else {
+                format!(
+                    "{{ min = [-1.0, {y0:e}], max = [{:e}, {y1:e}] }}",
+                    self.length() + 1.0
+                )
+            }
         };
         // Beyond G₀ D with D ≤ 4 at λ = 1: G = E' ε² H / 2 of the uncracked strip.
         let grip_displacement =
@@ -515,7 +566,13 @@ impl Strip {
             },
             self.fracture_energy,
         );
-        if self.angle == 0.0 {
+        if three_d {
+            let _ = writeln!(
+                t,
+                "[[regions]]\nmaterial = \"strip\"\nspacing = {h:e}\nbox = {{ min = [0.0, {bottom:e}, 0.0], max = [{:e}, {top:e}, {depth:e}] }}\n",
+                self.length()
+            );
+        } else if self.angle == 0.0 {
             let _ = writeln!(
                 t,
                 "[[regions]]\nmaterial = \"strip\"\nspacing = {h:e}\nbox = {{ min = [0.0, {bottom:e}], max = [{:e}, {top:e}] }}\n",
@@ -528,15 +585,31 @@ impl Strip {
             );
         }
         let guard = 0.5 * half;
+        let (crack, held, pulled) = if three_d {
+            (
+                format!(
+                    "origin = [{:e}, 0.0, -1.0]\nedge1 = [{:e}, 0.0, 0.0]\nedge2 = [0.0, 0.0, {:e}]",
+                    -h,
+                    self.notch() + h,
+                    depth + 2.0
+                ),
+                String::from("x = 0.0, y = 0.0, z = 0.0"),
+                format!("x = {gx:e}, y = {gy:e}, z = 0.0"),
+            )
+        } else {
+            (
+                format!("from = [{:e}, 0.0]\nto = [{:e}, 0.0]", -h, self.notch()),
+                String::from("x = 0.0, y = 0.0"),
+                format!("x = {gx:e}, y = {gy:e}"),
+            )
+        };
         let _ = writeln!(
             t,
-            "[[cracks]]\nfrom = [{:e}, 0.0]\nto = [{:e}, 0.0]\n\n\
-             [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ x = 0.0, y = 0.0 }}\n\n\
-             [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ x = {gx:e}, y = {gy:e} }}\n\n\
+            "[[cracks]]\n{crack}\n\n\
+             [[boundary]]\nname = \"bottom\"\nbox = {}\ndisplacement = {{ {held} }}\n\n\
+             [[boundary]]\nname = \"top\"\nbox = {}\ndisplacement = {{ {pulled} }}\n\n\
              [fracture]\ncalibration = \"{}\"\n{}no_fail = [\n  {{ box = {} }},\n  {{ box = {} }},\n]\n\n\
              [quasi_static]\nstrategy = \"event\"\nmax_load_factor = {}",
-            -h,
-            self.notch(),
             slab(2.0 * bottom, -half),
             slab(half, 2.0 * top),
             self.calibration,
@@ -599,8 +672,12 @@ pub struct StripDissipation {
     pub work: f64,
     /// The steady window `[start, end)` along `x` (m).
     pub window: (f64, f64),
-    /// Energy booked per spacing along the strip, over `G₀ × spacing`.
+    /// Energy booked per spacing along the strip, over `G₀ × spacing` (per unit
+    /// depth of the bulk in 3D).
     pub profile: Vec<f64>,
+    /// 3D: energy booked in the steady window per spacing of depth, over `G₀ ×`
+    /// that area (the bulk's value is `D`; the faces show the skin); empty in 2D.
+    pub depth_profile: Vec<f64>,
     /// The lattice trapping ratio `r`: in the steady window, the largest critical
     /// grip displacement of the events over the energy-equivalent one (the median
     /// over windows of four spacings; [`trapping_ratio`]).
@@ -682,8 +759,8 @@ struct Booking {
     /// The critical state and the reaction after the break, until the
     /// snapshot of the broken state arrives.
     broken: Option<((f64, f64), f64)>,
-    /// `(x of the bond's midpoint, energy)` of every broken bond.
-    booked: Vec<(f64, f64)>,
+    /// `(x, z of the bond's midpoint, energy)` of every broken bond.
+    booked: Vec<(f64, f64, f64)>,
     /// Every event: the crack front after it, its critical grip displacement and
     /// the stiffness it removed, `ΔR/Δ`.
     events: Vec<StripEvent>,
@@ -717,12 +794,12 @@ impl Observer for Booking {
                     for b in bonds.owned_by(i) {
                         if self.intact[b] && !bonds.intact[b] {
                             let j = bonds.neighbour[b] as usize;
-                            midpoints.push(0.5 * (x[i][0] + x[j][0]));
+                            midpoints.push([0.5 * (x[i][0] + x[j][0]), 0.5 * (x[i][2] + x[j][2])]);
                             self.intact[b] = false;
                         }
                     }
                 }
-                self.front = midpoints.iter().fold(self.front, |f, &m| f.max(m));
+                self.front = midpoints.iter().fold(self.front, |f, m| f.max(m[0]));
                 if !midpoints.is_empty() && u > 0.0 {
                     self.events.push(StripEvent {
                         x: self.front,
@@ -732,7 +809,7 @@ impl Observer for Booking {
                 }
                 let share = released / midpoints.len().max(1) as f64;
                 self.booked
-                    .extend(midpoints.into_iter().map(|m| (m, share)));
+                    .extend(midpoints.into_iter().map(|m| (m[0], m[1], share)));
                 self.total += released;
             }
         }
@@ -773,22 +850,38 @@ impl Strip {
         let last = self.length() - self.height().max(4.0 * self.horizon());
         let end = start + ((last - start) / h).floor() * h;
         let g0 = self.fracture_energy;
+        // In 3D: per unit depth of the bulk (the whole depth for the work).
+        let (z0, z1) = self.bulk().unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+        let (bulk_depth, depth) = match self.bulk() {
+            Some((z0, z1)) => (z1 - z0, self.depth()),
+            None => (1.0, 1.0),
+        };
+        let in_bulk = |z: f64| (z0..z1).contains(&z);
         let in_window: f64 = booking
             .booked
             .iter()
-            .filter(|(x, _)| (start..end).contains(x))
-            .map(|(_, e)| e)
+            .filter(|&&(x, z, _)| (start..end).contains(&x) && in_bulk(z))
+            .map(|(_, _, e)| e)
             .sum();
         let mut profile = vec![0.0; self.length_cells];
-        for (x, e) in &booking.booked {
+        for &(x, _, e) in booking.booked.iter().filter(|b| in_bulk(b.1)) {
             let k = ((x / h).floor().max(0.0) as usize).min(self.length_cells - 1);
-            profile[k] += e / (g0 * h);
+            profile[k] += e / (g0 * h * bulk_depth);
+        }
+        // Energy per spacing of depth in the steady window, over G₀ × its area.
+        let mut depth_profile = vec![0.0; self.depth_cells];
+        for &(x, z, e) in &booking.booked {
+            if (start..end).contains(&x) {
+                let k = ((z / h).floor().max(0.0) as usize).min(self.depth_cells - 1);
+                depth_profile[k] += e / (g0 * h * (end - start));
+            }
         }
         Ok(StripDissipation {
-            d: in_window / (g0 * (end - start)),
-            work: booking.total / (g0 * (self.length() - self.notch())),
+            d: in_window / (g0 * (end - start) * bulk_depth),
+            work: booking.total / (g0 * (self.length() - self.notch()) * depth),
             window: (start, end),
             profile,
+            depth_profile,
             trapping: trapping_ratio(&booking.events, start, end, 4.0 * h, h),
             points,
             bonds_broken: booking.booked.len(),
