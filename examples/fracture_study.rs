@@ -784,9 +784,17 @@ fn scenes() {
         case.stepping = stepping.into();
         cases.push(case);
     }
-    let mut bar = Sent::new("bond_based", 20, 3.015);
-    bar.depth = Some(0.02);
-    cases.push(bar);
+    // The 3D bars of Sec. 7.
+    for (model, cells, depth) in [
+        ("bond_based", 20, 0.02),
+        ("bond_based", 20, 0.04),
+        ("bond_based", 30, 0.03),
+        ("shear", 20, 0.02),
+    ] {
+        let mut bar = Sent::new(model, cells, 3.015);
+        bar.depth = Some(depth);
+        cases.push(bar);
+    }
     for &(model, cells, m, lattice) in SHEAR_GRIP_SWEEP {
         let mut case = Sent::new(model, cells, m);
         case.loading = Loading::Shear;

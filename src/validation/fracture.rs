@@ -164,8 +164,8 @@ impl Sent {
         if self.model == "shear" && self.shear_criterion != "energy" {
             let _ = write!(name, "_{}", self.shear_criterion);
         }
-        if self.depth.is_some() {
-            name.push_str("_3d");
+        if let Some(depth) = self.depth {
+            let _ = write!(name, "_3d_depth{}mm", (depth * 1e3).round());
         }
         if self.lattice_angle != 0.0 {
             let _ = write!(name, "_lattice{}deg", self.lattice_angle);
