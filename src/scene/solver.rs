@@ -126,3 +126,23 @@ fn check_petsc(static_run: bool) -> Result<(), InputError> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::check_petsc;
+
+    #[test]
+    fn petsc_is_refused_where_it_cannot_run() {
+        let dynamic = check_petsc(false).unwrap_err();
+        assert_eq!(dynamic.field, "solver.method");
+        if cfg!(feature = "mpi") {
+            assert!(check_petsc(true).is_ok());
+            assert!(dynamic.message.contains("static problems only"));
+        } else {
+            let unbuilt = check_petsc(true).unwrap_err();
+            assert!(unbuilt.message.contains("built with the mpi feature"));
+            assert!(unbuilt.message.contains("\"iterative\""));
+            assert_eq!(dynamic, unbuilt);
+        }
+    }
+}
