@@ -284,9 +284,8 @@ impl Petsc {
 
 impl Drop for Petsc {
     fn drop(&mut self) {
-        // SAFETY: initialised by `init`; every PETSc object is gone (they
-        // live in a `Solver`, which borrows nothing from here but is dropped
-        // with the solution before the command line drops this).
+        // SAFETY: initialised by `init`. PETSc objects live in a `Solver`,
+        // which a static solve drops before it returns.
         unsafe { ffi::PetscFinalize() };
     }
 }
@@ -295,7 +294,7 @@ impl Drop for Petsc {
 /// which MPI's default error handler does not return from).
 fn comm_query(query: unsafe extern "C" fn(ffi::MPI_Comm, *mut c_int) -> c_int) -> usize {
     let mut value = 0;
-    // SAFETY: PETSc is initialised (the caller holds a `Petsc`).
+    // SAFETY: PETSc is initialised (the caller holds a `Petsc`, or checked).
     unsafe { query(ffi::PETSC_COMM_WORLD, &mut value) };
     value as usize
 }
@@ -422,7 +421,12 @@ impl Solver {
             numbering.bounds[rank] * d,
             numbering.bounds[rank + 1] * d,
         );
-        let local = local_rows(pattern, values, transpose, layout, &numbering, first..last)?;
+        let LocalRows {
+            offsets,
+            columns,
+            values: entries,
+            owned,
+        } = local_rows(pattern, values, transpose, layout, &numbering, first..last)?;
         let n_local = petsc_int(last - first, "rows")?;
         let n_global = petsc_int(numbering.points.len() * d, "rows")?;
         let mut matrix = Matrix(null_mut());
@@ -431,11 +435,11 @@ impl Solver {
         call!(MatSetBlockSize(matrix.0, d as PetscInt))?;
         call!(MatSetType(matrix.0, c"aij".as_ptr()))?;
         // Each is a no-op for the other type (one process: sequential AIJ);
-        // both insert the values and assemble.
-        let (i, j, v) = (local.offsets.as_ptr(), local.columns.as_ptr(), local.values.as_ptr());
+        // both copy the rows and assemble.
+        let (i, j, v) = (offsets.as_ptr(), columns.as_ptr(), entries.as_ptr());
         call!(MatSeqAIJSetPreallocationCSR(matrix.0, i, j, v))?;
         call!(MatMPIAIJSetPreallocationCSR(matrix.0, i, j, v))?;
-        drop(local.values);
+        drop((offsets, columns, entries));
 
         let mut coordinates = Vector(null_mut());
         call!(MatCreateVecs(matrix.0, &mut coordinates.0, null_mut()))?;
@@ -477,7 +481,7 @@ impl Solver {
             _matrix: matrix,
             global_rows: numbering.points.len() * d,
             rows: numbering.rows,
-            owned: local.owned,
+            owned,
             processes,
             report: None,
         })
