@@ -45,7 +45,12 @@ use std::ffi::{c_char, c_int, CStr, CString};
 use std::ptr::{null, null_mut};
 
 /// The C declarations (PETSc 3.18, Open MPI 4.1).
-#[allow(non_snake_case, non_camel_case_types, non_upper_case_globals)]
+#[allow(
+    non_snake_case,
+    non_camel_case_types,
+    non_upper_case_globals,
+    clippy::upper_case_acronyms
+)]
 mod ffi {
     use std::ffi::{c_char, c_int, c_void};
 
