@@ -279,6 +279,15 @@ pub enum NumericalError {
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
     Solver(String),
+    /// A PETSc call failed (the `mpi` build): the function, its error code
+    /// and PETSc's text for it (PETSc prints its own trace on stderr).
+    #[cfg(feature = "mpi")]
+    #[error("PETSc's {call} failed with error code {code} ({message})")]
+    Petsc {
+        call: &'static str,
+        code: i32,
+        message: String,
+    },
 }
 
 /// A size in B, KiB, MiB or GiB with three significant digits.

@@ -92,6 +92,16 @@ internal!(
 #[doc(hidden)]
 pub mod validation;
 
+/// MPI runs through PETSc (the `mpi` feature): hold a [`mpi::Petsc`] (PETSc
+/// and MPI initialised for its life) and scenes with `solver.method =
+/// "petsc"` solve on every process of the run (`mpirun -np N`). Each process
+/// discretises and assembles the whole body; PETSc distributes the linear
+/// solve; every process receives the whole solution.
+#[cfg(feature = "mpi")]
+pub mod mpi {
+    pub use crate::solve::petsc::{Petsc, PetscReport};
+}
+
 pub use drivers::{check, run, Observer, Progress, Snapshot, Solution};
 pub use error::{Error, InputError, NumericalError};
 pub use notes::Notes;

@@ -52,6 +52,10 @@ pub struct Counts {
     pub gmres: Option<GmresReport>,
     /// Isolated points removed.
     pub removed_points: usize,
+    /// What PETSc used and did (`solver.method = "petsc"`).
+    #[cfg(feature = "mpi")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub petsc: Option<crate::solve::petsc::PetscReport>,
 }
 
 /// The reduced linear system, kept for export.
@@ -113,6 +117,8 @@ impl Counts {
             refinement_steps: report.refinement_steps,
             gmres: report.gmres,
             removed_points: disc.removed_isolated,
+            #[cfg(feature = "mpi")]
+            petsc: pipeline.petsc_report().cloned(),
         }
     }
 }

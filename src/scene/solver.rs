@@ -51,18 +51,33 @@ impl SolverSettings {
     }
 }
 
-/// Validates the keys of `[solver]` that need no other section.
-pub(super) fn validate(spec: &SolverSpec, model: ModelKind) -> Result<SolverSettings, InputError> {
-    if spec.method == Some(SolverMethod::Iterative) {
+/// Validates the keys of `[solver]`; `static_run`: the scene has neither
+/// `[quasi_static]` nor `[dynamics]` (the `petsc` route solves static
+/// problems only).
+pub(super) fn validate(
+    spec: &SolverSpec,
+    model: ModelKind,
+    static_run: bool,
+) -> Result<SolverSettings, InputError> {
+    if spec.method == Some(SolverMethod::Petsc) {
+        check_petsc(static_run)?;
+    }
+    if let Some(method @ (SolverMethod::Iterative | SolverMethod::Petsc)) = spec.method {
         for (key, present) in [
             ("solver.ordering", spec.ordering.is_some()),
             ("solver.precision", spec.precision.is_some()),
         ] {
             if present {
+                let name = match method {
+                    SolverMethod::Petsc => "\"petsc\"",
+                    _ => "\"iterative\"",
+                };
                 return Err(InputError::new(
                     key,
-                    "applies to the direct factor, which solver.method = \"iterative\" \
-                     does not compute; remove it or choose \"cholesky\" or \"gmres\"",
+                    format!(
+                        "applies to the direct factor, which solver.method = {name} \
+                         does not compute; remove it or choose \"cholesky\" or \"gmres\""
+                    ),
                 ));
             }
         }
@@ -88,4 +103,46 @@ pub(super) fn validate(spec: &SolverSpec, model: ModelKind) -> Result<SolverSett
         ordering: spec.ordering.unwrap_or_default(),
         precision: spec.precision.unwrap_or_default(),
     })
+}
+
+/// Refuses `solver.method = "petsc"` where this build or this run cannot
+/// take it: a build without the `mpi` feature, a fracture or dynamics run.
+fn check_petsc(static_run: bool) -> Result<(), InputError> {
+    if !cfg!(feature = "mpi") {
+        return Err(InputError::new(
+            "solver.method",
+            "\"petsc\" needs dhpd built with the mpi feature and PETSc installed (Debian: \
+             apt-get install petsc-dev; then cargo build --release --features mpi); on one \
+             machine leave solver.method out or use \"iterative\", which solves the largest \
+             bodies without a factor",
+        ));
+    }
+    if !static_run {
+        return Err(InputError::new(
+            "solver.method",
+            "\"petsc\" solves static problems only for now (quasi-static fracture and \
+             dynamics run on one process); leave solver.method out or choose \"iterative\"",
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::check_petsc;
+
+    #[test]
+    fn petsc_is_refused_where_it_cannot_run() {
+        let dynamic = check_petsc(false).unwrap_err();
+        assert_eq!(dynamic.field, "solver.method");
+        if cfg!(feature = "mpi") {
+            assert!(check_petsc(true).is_ok());
+            assert!(dynamic.message.contains("static problems only"));
+        } else {
+            let unbuilt = check_petsc(true).unwrap_err();
+            assert!(unbuilt.message.contains("built with the mpi feature"));
+            assert!(unbuilt.message.contains("\"iterative\""));
+            assert_eq!(dynamic, unbuilt);
+        }
+    }
 }

@@ -518,6 +518,11 @@ pub enum SolverMethod {
     /// cycle (Chebyshev smoothing, a coarse space of the rigid motions of small
     /// point aggregates): no factor of `K` is stored, memory linear in the points.
     Iterative,
+    /// PETSc on every process of an MPI run (`mpirun -np N dhpd run`): CG
+    /// (GMRES for a non-symmetric `K`) with algebraic multigrid (GAMG) given
+    /// the rigid motions; static solves only, and only in a build with the
+    /// `mpi` feature.
+    Petsc,
 }
 
 /// The fill-reducing ordering of the Cholesky factor (`solver.ordering`).

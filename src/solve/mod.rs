@@ -17,7 +17,9 @@
 //! - [`cholesky`], [`lu`]: the sparse factors (faer); [`refine`]: iterative
 //!   refinement; [`cg`], [`gmres`]: the Krylov methods; [`low_rank`]: the
 //!   Sherman–Morrison–Woodbury update; [`ordering`]: geometric nested
-//!   dissection; [`two_level`]: the preconditioner of the iterative route.
+//!   dissection; [`two_level`]: the preconditioner of the iterative route;
+//!   `petsc` (the `mpi` feature): PETSc's distributed Krylov solvers and
+//!   algebraic multigrid on the processes of an MPI run.
 
 pub mod cg;
 pub mod cholesky;
@@ -25,6 +27,8 @@ pub mod gmres;
 pub mod low_rank;
 pub mod lu;
 pub mod ordering;
+#[cfg(feature = "mpi")]
+pub mod petsc;
 pub mod pipeline;
 pub mod refine;
 pub mod route;

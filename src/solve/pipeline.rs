@@ -65,7 +65,7 @@ const SYMMETRIC_PART_BUDGET: usize = 600;
 pub const ITERATIVE_BUDGET: usize = 2000;
 
 /// GMRES restart length.
-const GMRES_RESTART: usize = 60;
+pub(super) const GMRES_RESTART: usize = 60;
 
 /// An update solve that costs more than this fraction of a fresh factorisation
 /// and solve makes the next re-solve factorise afresh.
@@ -274,6 +274,8 @@ impl Pipeline {
     pub fn method(&self) -> SolverMethod {
         match (self.source, &self.factor) {
             (Source::TwoLevel, _) => SolverMethod::Iterative,
+            #[cfg(feature = "mpi")]
+            (Source::Petsc, _) => SolverMethod::Petsc,
             (_, Factor::Lu(_)) => SolverMethod::Lu,
             (Source::Surrogate | Source::SymmetricPart, _) => SolverMethod::Gmres,
             _ => SolverMethod::Cholesky,
@@ -285,7 +287,16 @@ impl Pipeline {
         match &self.factor {
             Factor::Cholesky(c) => Some(c.nnz_l()),
             Factor::TwoLevel(t) => t.as_ref().map(TwoLevel::nnz_coarse_factor),
-            Factor::Lu(_) => None,
+            _ => None,
+        }
+    }
+
+    /// What the last PETSc solve used and did (the `petsc` route).
+    #[cfg(feature = "mpi")]
+    pub fn petsc_report(&self) -> Option<&super::petsc::PetscReport> {
+        match &self.factor {
+            Factor::Petsc(Some(solver)) => solver.report.as_ref(),
+            _ => None,
         }
     }
 
@@ -324,9 +335,27 @@ impl Pipeline {
             self.factored = true;
             return Ok(());
         }
+        #[cfg(feature = "mpi")]
+        if self.source == Source::Petsc {
+            // The old set-up goes before the new one is built.
+            self.factor = Factor::Petsc(None);
+            if !self.symmetric {
+                self.transpose();
+            }
+            let transpose = self.transpose.as_deref().filter(|_| !self.symmetric);
+            let solver = super::petsc::Solver::new(
+                &self.pattern,
+                &m.k.values,
+                transpose,
+                layout,
+                self.symmetric,
+            )?;
+            self.factor = Factor::Petsc(Some(solver));
+            self.factored = true;
+            return Ok(());
+        }
         let symmetric_values;
         let matrix = match self.source {
-            Source::Matrix | Source::TwoLevel => m.k.view(&self.pattern),
             Source::SymmetricPart => {
                 symmetric_values = m.k.symmetric_part(self.transpose());
                 symmetric_values.view(&self.pattern)
@@ -338,11 +367,12 @@ impl Pipeline {
                     .expect("the caller passes the surrogate the pipeline asked for");
                 values.view(pattern)
             }
+            _ => m.k.view(&self.pattern),
         };
         let result = match &mut self.factor {
             Factor::Cholesky(c) => c.factorize(matrix),
             Factor::Lu(l) => l.factorize(matrix),
-            Factor::TwoLevel(_) => unreachable!("built above"),
+            _ => unreachable!("built above"),
         };
         result.map_err(|e| factor_error(e, layout))?;
         self.factored = true;
@@ -512,8 +542,36 @@ impl Pipeline {
         match self.source {
             Source::Matrix => Ok(self.solve_direct(m.k, rhs, x, exact_residual, notes)),
             Source::TwoLevel if self.symmetric => self.solve_two_level(m.k, rhs, x),
+            #[cfg(feature = "mpi")]
+            Source::Petsc => self.solve_petsc(m.k, rhs, x),
             _ => self.solve_krylov(layout, m, rhs, x, notes),
         }
+    }
+
+    /// PETSc's solve (`solve::petsc`), its residual checked with dhpd's product.
+    #[cfg(feature = "mpi")]
+    fn solve_petsc(&mut self, k: &Stiffness, rhs: &[f64], x: &mut [f64]) -> Result<Fresh, Error> {
+        let Factor::Petsc(Some(solver)) = &mut self.factor else {
+            unreachable!("set up by factorize")
+        };
+        let t = Instant::now();
+        let iterations = solver.solve(rhs, x)?;
+        // Measured here: the pipeline's own measure applies dhpd's factors.
+        self.costs.iteration_seconds =
+            (t.elapsed().as_secs_f64() / iterations.max(1) as f64).max(f64::MIN_POSITIVE);
+        self.costs.fresh_iterations = iterations;
+        let residual = relative_residual(&self.product(k, x), rhs);
+        Ok(Fresh {
+            residual,
+            refinement_steps: 0,
+            at_floor: false,
+            krylov: Some(GmresReport {
+                iterations,
+                relative_residual: residual,
+                converged: true,
+                stagnated: false,
+            }),
+        })
     }
 
     /// Mixed precision: CG on `K` preconditioned by the single-precision
@@ -1023,6 +1081,11 @@ impl Pipeline {
                 "solver.method = \"lu\" factorises K itself (up to {LU_MAX_UNKNOWNS} free \
                  unknowns) and refines the answer to working precision"
             ),
+            #[cfg(feature = "mpi")]
+            Source::Petsc => "PETSc's Krylov method measures its own residual, which \
+                differs from dhpd's by round-off; tighten it (-ksp_rtol) or solve directly \
+                (solver.method = \"cholesky\") on one process"
+                .to_string(),
         };
         Err(NumericalError::ResidualTooLarge {
             residual,

@@ -10,6 +10,7 @@
 //! | `lu` | `K = L U`, triangular solves, refinement | GMRES preconditioned by the old `L U` |
 //! | `gmres` | GMRES on `K` preconditioned by the Cholesky factor of a symmetric surrogate | GMRES with the old surrogate factor |
 //! | `iterative` | CG on `K` (GMRES if not symmetric) preconditioned by a two-level cycle ([`super::two_level`]): no factor of `K` | the same with the old cycle |
+//! | `petsc` | PETSc's CG (GMRES) with algebraic multigrid, on the processes of an MPI run (`solve::petsc`, `mpi` feature) | none: static solves only |
 //!
 //! The surrogate of the `gmres` route is a symmetric positive definite matrix
 //! on a sparser pattern that the caller provides ([`wants_surrogate`]; the
@@ -128,6 +129,9 @@ pub(super) enum Source {
     Surrogate,
     /// `K` itself, through the two-level preconditioner (the `iterative` route).
     TwoLevel,
+    /// `K` itself, handed to PETSc (the `petsc` route).
+    #[cfg(feature = "mpi")]
+    Petsc,
 }
 
 /// The preconditioner or factor of a route.
@@ -136,6 +140,9 @@ pub(super) enum Factor {
     Lu(SparseLu),
     /// Built at the numeric stage, from the values of `K`.
     TwoLevel(Option<TwoLevel>),
+    /// `K` set up in PETSc at the numeric stage.
+    #[cfg(feature = "mpi")]
+    Petsc(Option<super::petsc::Solver>),
 }
 
 impl Factor {
@@ -145,7 +152,7 @@ impl Factor {
         match self {
             Factor::Cholesky(c) => c.solve_in_place(b),
             Factor::Lu(l) => l.solve_in_place(b),
-            Factor::TwoLevel(_) => unreachable!("the two-level cycle needs K"),
+            _ => unreachable!("the two-level cycle needs K; PETSc solves by itself"),
         }
     }
 
@@ -192,6 +199,23 @@ impl Chosen {
             surrogate: false,
         }
     }
+
+    /// The `petsc` route, in a build with the `mpi` feature.
+    fn petsc() -> Result<Self, Error> {
+        #[cfg(feature = "mpi")]
+        return Ok(Chosen {
+            source: Source::Petsc,
+            factor: Factor::Petsc(None),
+            ordering: None,
+            surrogate: false,
+        });
+        #[cfg(not(feature = "mpi"))]
+        Err(InputError::new(
+            "solver.method",
+            "\"petsc\" needs dhpd built with the mpi feature",
+        )
+        .into())
+    }
 }
 
 /// Chooses the route of `settings` for `K`'s `pattern` (and the `surrogate`'s,
@@ -212,6 +236,7 @@ pub(super) fn choose(
             surrogate: false,
         }),
         SolverMethod::Iterative => Ok(Chosen::iterative()),
+        SolverMethod::Petsc => Chosen::petsc(),
         SolverMethod::Cholesky | SolverMethod::Gmres => {
             choose_factor(pattern, surrogate, layout, settings, hints, notes)
         }

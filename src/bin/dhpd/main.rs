@@ -7,6 +7,12 @@
 //! dhpd check SCENE              validate a scene (and its point files) only
 //! ```
 //!
+//! Built with the `mpi` feature, every run initialises PETSc and MPI
+//! (`mpirun -np N dhpd run SCENE -- PETSC_OPTIONS`): scenes with
+//! `solver.method = "petsc"` solve on all the processes, rank 0 alone prints
+//! the notes and reports and writes the results, and every rank prints its
+//! errors.
+//!
 //! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error,
 //! 130 / 143 interrupted by SIGINT / SIGTERM (partial results removed).
 //!
@@ -19,7 +25,8 @@ mod report;
 use clap::{Parser, Subcommand};
 use dhpd::error::Error;
 use dhpd::output::Results;
-use dhpd::scene::{self, Scene};
+use dhpd::scene::{self, Scene, SolverMethod};
+use dhpd::InputError;
 use dhpd::{Notes, Observer, Progress, Snapshot, Solution};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -40,6 +47,11 @@ enum Command {
         /// Output directory (default: `dhpd-out/<scene name>`); replaced when the run succeeds.
         #[arg(long)]
         out: Option<PathBuf>,
+        /// PETSc options after `--` (e.g. `-- -ksp_monitor -ksp_view`), for
+        /// `solver.method = "petsc"`.
+        #[cfg(feature = "mpi")]
+        #[arg(last = true, allow_hyphen_values = true)]
+        petsc_options: Vec<String>,
     },
     /// Validate a scene and its point files without solving.
     Check {
@@ -56,16 +68,72 @@ fn main() {
         )
     });
     let cli = Cli::parse();
+    let world = match World::start(&cli) {
+        Ok(world) => world,
+        Err(e) => {
+            eprintln!("dhpd: {e}");
+            std::process::exit(e.exit_code());
+        }
+    };
     let result = match cli.command {
-        None => run_default(),
-        Some(Command::Run { scene, out }) => {
-            scene::load(&scene).and_then(|s| run(&s, out.as_deref()).map(|_| ()))
+        None => run_default(&world),
+        Some(Command::Run { scene, out, .. }) => {
+            scene::load(&scene).and_then(|s| run(&s, out.as_deref(), &world).map(|_| ()))
         }
         Some(Command::Check { scene }) => check(&scene),
     };
     if let Err(e) = result {
-        eprintln!("dhpd: {e}");
+        match world.size() {
+            1 => eprintln!("dhpd: {e}"),
+            n => eprintln!("dhpd (rank {} of {n}): {e}", world.rank()),
+        }
+        drop(world);
         std::process::exit(e.exit_code());
+    }
+}
+
+/// The processes of this run: one, or (the `mpi` feature) those of an MPI
+/// run, with PETSc initialised until this is dropped.
+struct World {
+    #[cfg(feature = "mpi")]
+    petsc: dhpd::mpi::Petsc,
+}
+
+impl World {
+    /// Initialises PETSc and MPI in the `mpi` build, with the command line's
+    /// PETSc options.
+    fn start(cli: &Cli) -> Result<Self, Error> {
+        #[cfg(feature = "mpi")]
+        {
+            let options = match &cli.command {
+                Some(Command::Run { petsc_options, .. }) => petsc_options.as_slice(),
+                _ => &[],
+            };
+            Ok(World {
+                petsc: dhpd::mpi::Petsc::init(options)?,
+            })
+        }
+        #[cfg(not(feature = "mpi"))]
+        {
+            let _ = cli;
+            Ok(World {})
+        }
+    }
+
+    /// This process's rank (0 prints and writes).
+    fn rank(&self) -> usize {
+        #[cfg(feature = "mpi")]
+        return self.petsc.rank();
+        #[cfg(not(feature = "mpi"))]
+        0
+    }
+
+    /// The number of processes.
+    fn size(&self) -> usize {
+        #[cfg(feature = "mpi")]
+        return self.petsc.size();
+        #[cfg(not(feature = "mpi"))]
+        1
     }
 }
 
@@ -98,7 +166,23 @@ fn print_notes(notes: &mut Notes) {
 /// Solves `scene` with the driver it asks for and writes its results into
 /// `out` (default `dhpd-out/<scene name>`), through a staging directory that
 /// replaces it when complete.
-fn run(scene: &Scene, out: Option<&Path>) -> Result<Solution, Error> {
+/// On several processes (`mpirun`), only `solver.method = "petsc"` runs, and
+/// only rank 0 prints and writes.
+fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Error> {
+    if world.size() > 1 && scene.solver.method != SolverMethod::Petsc {
+        return Err(InputError::new(
+            "solver.method",
+            format!(
+                "this run has {} processes and only solver.method = \"petsc\" solves on \
+                 several; set it, or run on one process (without mpirun)",
+                world.size()
+            ),
+        )
+        .into());
+    }
+    if world.rank() > 0 {
+        return dhpd::run(scene, &mut ());
+    }
     let start = Instant::now();
     let dir = out
         .map(Path::to_path_buf)
@@ -154,10 +238,10 @@ impl Observer for Printer {
 }
 
 /// The embedded default scene, solved and compared with its FEM reference.
-fn run_default() -> Result<(), Error> {
+fn run_default(world: &World) -> Result<(), Error> {
     let scene = dhpd::default_scene::scene()?;
     println!("dhpd: no scene given, running the embedded default (2D bimaterial strip, bond-based DH-PD)\n");
-    let Solution::Static(s) = run(&scene, None)? else {
+    let Solution::Static(s) = run(&scene, None, world)? else {
         unreachable!("the default scene is static")
     };
     let c = dhpd::default_scene::compare(&s);

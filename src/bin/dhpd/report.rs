@@ -124,6 +124,13 @@ fn print_static(scene: &Scene, s: &StaticSolution) {
         (method, Some(k)) => println!("solver: {method:?}, {} Krylov iterations", k.iterations),
         (method, None) => println!("solver: {method:?}"),
     }
+    #[cfg(feature = "mpi")]
+    if let Some(p) = &c.petsc {
+        println!(
+            "PETSc: {} + {} on {} process(es), {} rows, {}",
+            p.ksp, p.pc, p.processes, p.rows, p.converged_reason
+        );
+    }
     if let Some(o) = &c.ordering {
         let size = |v: Option<usize>| v.map_or("-".into(), |v| v.to_string());
         println!(

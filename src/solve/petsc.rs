@@ -1,0 +1,689 @@
+//! PETSc as the linear solver of an MPI run (`solver.method = "petsc"`, in a
+//! build with the `mpi` feature): a thin FFI over the functions used, owners
+//! of PETSc's objects that destroy them when dropped, and the solve.
+//!
+//! **What is distributed: the linear solve only.** Every process discretises
+//! and assembles the whole problem (replicated: the time and memory of those
+//! phases do not shrink with the number of processes), then hands PETSc only
+//! the rows it owns: a contiguous block of points in dhpd's point order,
+//! balanced by the stored entries of `K` of its rows (its bonds; neighbours of
+//! neighbours for the shear model). PETSc solves with CG (GMRES, preconditioned
+//! on the right, for a non-symmetric `K`) and algebraic multigrid (GAMG) given
+//! the rigid motions of the points as its near-null space, to a relative true
+//! residual `‖b − K x‖/‖b‖` of [`GMRES_TOLERANCE`]. The solution is gathered on
+//! every process ([`VecScatterCreateToAll`](ffi::VecScatterCreateToAll)), which
+//! then checks its residual with dhpd's own product, as for every route.
+//!
+//! **Unknowns.** PETSc's rows are `d` per point with a free component (block
+//! size `d`, as GAMG's rigid-motion near-null space needs). A prescribed
+//! component of such a point (a roller) is an identity row scaled by the mean
+//! diagonal of `K`, with a zero right-hand side: decoupled, its answer is zero
+//! and is dropped. Fully prescribed points have no row.
+//!
+//! **Options.** `KSPSetFromOptions` runs after dhpd's choices, so PETSc's
+//! options database overrides them: `dhpd run scene.toml -- -ksp_monitor
+//! -pc_gamg_threshold 0.02` (the options after `--` go to [`Petsc::init`]) or
+//! the `PETSC_OPTIONS` environment variable.
+//!
+//! **Why an FFI.** No maintained Rust binding of PETSc exists (petsc-rs, a
+//! work in progress, builds its bindings with bindgen and rsmpi); the ~40 C
+//! functions used here are stable API. Their declarations follow PETSc 3.18's
+//! headers (`petscsys.h`, `petscvec.h`, `petscmat.h`, `petscksp.h`,
+//! `petscpc.h`) as Debian's `petsc-dev` builds it: `PetscInt` 32-bit,
+//! `PetscScalar` `f64`, and Open MPI, whose `MPI_Comm` is a pointer. Every
+//! error code is checked and returned as [`NumericalError::Petsc`] naming the
+//! call; destroy functions' codes, in `Drop`, cannot be returned and are
+//! ignored.
+
+use super::pipeline::{GMRES_RESTART, ITERATIVE_BUDGET};
+use super::{Layout, GMRES_TOLERANCE};
+use crate::assembly::dofs::PRESCRIBED;
+use crate::assembly::pattern::Pattern;
+use crate::error::{Error, InputError, NumericalError};
+use serde::Serialize;
+use std::ffi::{c_char, c_int, CStr, CString};
+use std::ptr::{null, null_mut};
+
+/// The C declarations (PETSc 3.18, Open MPI 4.1).
+#[allow(
+    non_snake_case,
+    non_camel_case_types,
+    non_upper_case_globals,
+    clippy::upper_case_acronyms
+)]
+mod ffi {
+    use std::ffi::{c_char, c_int, c_void};
+
+    pub type PetscErrorCode = c_int;
+    pub type PetscInt = i32;
+    pub type PetscScalar = f64;
+    pub type PetscReal = f64;
+    /// `enum { PETSC_FALSE, PETSC_TRUE }`.
+    pub type PetscBool = c_int;
+    /// Open MPI's `MPI_Comm` (`struct ompi_communicator_t *`).
+    pub type MPI_Comm = *mut c_void;
+
+    /// Opaque PETSc objects, each behind a pointer.
+    #[repr(C)]
+    pub struct Opaque {
+        _private: [u8; 0],
+    }
+    pub type Mat = *mut Opaque;
+    pub type Vec = *mut Opaque;
+    pub type VecScatter = *mut Opaque;
+    pub type MatNullSpace = *mut Opaque;
+    pub type KSP = *mut Opaque;
+    pub type PC = *mut Opaque;
+
+    /// `InsertMode::INSERT_VALUES`.
+    pub const INSERT_VALUES: c_int = 1;
+    /// `ScatterMode::SCATTER_FORWARD`.
+    pub const SCATTER_FORWARD: c_int = 0;
+    /// `KSPNormType::KSP_NORM_UNPRECONDITIONED`.
+    pub const KSP_NORM_UNPRECONDITIONED: c_int = 2;
+    /// `PCSide::PC_RIGHT`.
+    pub const PC_RIGHT: c_int = 1;
+    /// `PETSC_DEFAULT` (a tolerance left at PETSc's default).
+    pub const PETSC_DEFAULT: PetscReal = -2.0;
+
+    extern "C" {
+        pub static PETSC_COMM_WORLD: MPI_Comm;
+        /// Indexed by `KSPConvergedReason`, negative values included.
+        pub static KSPConvergedReasons: *const *const c_char;
+
+        pub fn MPI_Comm_rank(comm: MPI_Comm, rank: *mut c_int) -> c_int;
+        pub fn MPI_Comm_size(comm: MPI_Comm, size: *mut c_int) -> c_int;
+
+        pub fn PetscInitialize(
+            argc: *mut c_int,
+            args: *mut *mut *mut c_char,
+            file: *const c_char,
+            help: *const c_char,
+        ) -> PetscErrorCode;
+        pub fn PetscFinalize() -> PetscErrorCode;
+        pub fn PetscInitialized(initialized: *mut PetscBool) -> PetscErrorCode;
+        pub fn PetscErrorMessage(
+            code: c_int,
+            text: *mut *const c_char,
+            specific: *mut *mut c_char,
+        ) -> PetscErrorCode;
+
+        pub fn MatCreate(comm: MPI_Comm, mat: *mut Mat) -> PetscErrorCode;
+        pub fn MatSetSizes(
+            mat: Mat,
+            m: PetscInt,
+            n: PetscInt,
+            big_m: PetscInt,
+            big_n: PetscInt,
+        ) -> PetscErrorCode;
+        pub fn MatSetBlockSize(mat: Mat, bs: PetscInt) -> PetscErrorCode;
+        pub fn MatSetType(mat: Mat, kind: *const c_char) -> PetscErrorCode;
+        pub fn MatSeqAIJSetPreallocationCSR(
+            mat: Mat,
+            i: *const PetscInt,
+            j: *const PetscInt,
+            v: *const PetscScalar,
+        ) -> PetscErrorCode;
+        pub fn MatMPIAIJSetPreallocationCSR(
+            mat: Mat,
+            i: *const PetscInt,
+            j: *const PetscInt,
+            v: *const PetscScalar,
+        ) -> PetscErrorCode;
+        pub fn MatCreateVecs(mat: Mat, right: *mut Vec, left: *mut Vec) -> PetscErrorCode;
+        pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
+        pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
+        pub fn MatNullSpaceCreateRigidBody(
+            coords: Vec,
+            space: *mut MatNullSpace,
+        ) -> PetscErrorCode;
+        pub fn MatNullSpaceDestroy(space: *mut MatNullSpace) -> PetscErrorCode;
+
+        pub fn VecGetArray(v: Vec, a: *mut *mut PetscScalar) -> PetscErrorCode;
+        pub fn VecRestoreArray(v: Vec, a: *mut *mut PetscScalar) -> PetscErrorCode;
+        pub fn VecGetArrayRead(v: Vec, a: *mut *const PetscScalar) -> PetscErrorCode;
+        pub fn VecRestoreArrayRead(v: Vec, a: *mut *const PetscScalar) -> PetscErrorCode;
+        pub fn VecDestroy(v: *mut Vec) -> PetscErrorCode;
+        pub fn VecScatterCreateToAll(
+            v: Vec,
+            scatter: *mut VecScatter,
+            all: *mut Vec,
+        ) -> PetscErrorCode;
+        pub fn VecScatterBegin(
+            scatter: VecScatter,
+            x: Vec,
+            y: Vec,
+            insert: c_int,
+            mode: c_int,
+        ) -> PetscErrorCode;
+        pub fn VecScatterEnd(
+            scatter: VecScatter,
+            x: Vec,
+            y: Vec,
+            insert: c_int,
+            mode: c_int,
+        ) -> PetscErrorCode;
+        pub fn VecScatterDestroy(scatter: *mut VecScatter) -> PetscErrorCode;
+
+        pub fn KSPCreate(comm: MPI_Comm, ksp: *mut KSP) -> PetscErrorCode;
+        pub fn KSPSetOperators(ksp: KSP, a: Mat, p: Mat) -> PetscErrorCode;
+        pub fn KSPSetType(ksp: KSP, kind: *const c_char) -> PetscErrorCode;
+        pub fn KSPGetType(ksp: KSP, kind: *mut *const c_char) -> PetscErrorCode;
+        pub fn KSPGetPC(ksp: KSP, pc: *mut PC) -> PetscErrorCode;
+        pub fn PCSetType(pc: PC, kind: *const c_char) -> PetscErrorCode;
+        pub fn PCGetType(pc: PC, kind: *mut *const c_char) -> PetscErrorCode;
+        pub fn KSPSetTolerances(
+            ksp: KSP,
+            rtol: PetscReal,
+            abstol: PetscReal,
+            dtol: PetscReal,
+            maxits: PetscInt,
+        ) -> PetscErrorCode;
+        pub fn KSPSetNormType(ksp: KSP, norm: c_int) -> PetscErrorCode;
+        pub fn KSPSetPCSide(ksp: KSP, side: c_int) -> PetscErrorCode;
+        pub fn KSPGMRESSetRestart(ksp: KSP, restart: PetscInt) -> PetscErrorCode;
+        pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
+        pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;
+        pub fn KSPSolve(ksp: KSP, b: Vec, x: Vec) -> PetscErrorCode;
+        pub fn KSPGetIterationNumber(ksp: KSP, its: *mut PetscInt) -> PetscErrorCode;
+        pub fn KSPGetConvergedReason(ksp: KSP, reason: *mut c_int) -> PetscErrorCode;
+        pub fn KSPDestroy(ksp: *mut KSP) -> PetscErrorCode;
+    }
+}
+
+use ffi::PetscInt;
+
+/// Calls a PETSc (or MPI) function and turns a non-zero code into
+/// [`NumericalError::Petsc`] naming it.
+macro_rules! call {
+    ($f:ident($($arg:expr),* $(,)?)) => {
+        // SAFETY: the arguments are live PETSc objects owned here and
+        // pointers to buffers of the sizes PETSc reads or writes.
+        check(stringify!($f), unsafe { ffi::$f($($arg),*) })
+    };
+}
+
+/// `Err` naming `call` for a non-zero PETSc error `code`, with PETSc's text.
+fn check(call: &'static str, code: ffi::PetscErrorCode) -> Result<(), Error> {
+    if code == 0 {
+        return Ok(());
+    }
+    let mut text: *const c_char = null();
+    // SAFETY: PETSc points `text` at a static string (or leaves it null).
+    let known = unsafe { ffi::PetscErrorMessage(code, &mut text, null_mut()) } == 0;
+    let message = if known && !text.is_null() {
+        // SAFETY: a NUL-terminated static string.
+        unsafe { CStr::from_ptr(text) }
+            .to_string_lossy()
+            .into_owned()
+    } else {
+        "no message".into()
+    };
+    Err(NumericalError::Petsc {
+        call,
+        code,
+        message,
+    }
+    .into())
+}
+
+/// PETSc (and MPI) initialised for the life of this value: `PetscInitialize`
+/// on [`Petsc::init`], `PetscFinalize` on drop. One per process; the command
+/// line holds it for the whole run.
+pub struct Petsc {
+    /// The arguments PETSc was given; it keeps pointers to them until
+    /// `PetscFinalize`.
+    _args: Box<Arguments>,
+}
+
+/// `argc`/`argv` as C wants them, kept alive while PETSc is initialised.
+struct Arguments {
+    _strings: Vec<CString>,
+    pointers: Vec<*mut c_char>,
+    argc: c_int,
+    argv: *mut *mut c_char,
+}
+
+impl Petsc {
+    /// Initialises PETSc and MPI with PETSc `options` (`-ksp_monitor`, …) in
+    /// its options database. PETSc's own signal handlers are turned off
+    /// (`-no_signal_handler`): dhpd's handle SIGINT and SIGTERM.
+    pub fn init(options: &[String]) -> Result<Self, Error> {
+        if initialized()? {
+            return Err(NumericalError::Solver("PETSc is already initialised".into()).into());
+        }
+        let strings = ["dhpd", "-no_signal_handler"]
+            .into_iter()
+            .map(String::from)
+            .chain(options.iter().cloned())
+            .map(|s| {
+                CString::new(s).map_err(|_| {
+                    InputError::new("PETSc options", "an option holds a NUL character")
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut pointers: Vec<*mut c_char> = strings.iter().map(|s| s.as_ptr().cast_mut()).collect();
+        pointers.push(null_mut());
+        let mut args = Box::new(Arguments {
+            argc: strings.len() as c_int,
+            argv: null_mut(),
+            _strings: strings,
+            pointers,
+        });
+        args.argv = args.pointers.as_mut_ptr();
+        let Arguments { argc, argv, .. } = &mut *args;
+        call!(PetscInitialize(argc, argv, null(), null()))?;
+        Ok(Petsc { _args: args })
+    }
+
+    /// This process's rank in `PETSC_COMM_WORLD` (0 prints and writes).
+    pub fn rank(&self) -> usize {
+        comm_query(ffi::MPI_Comm_rank)
+    }
+
+    /// The number of processes.
+    pub fn size(&self) -> usize {
+        comm_query(ffi::MPI_Comm_size)
+    }
+}
+
+impl Drop for Petsc {
+    fn drop(&mut self) {
+        // SAFETY: initialised by `init`. PETSc objects live in a `Solver`,
+        // which a static solve drops before it returns.
+        unsafe { ffi::PetscFinalize() };
+    }
+}
+
+/// `MPI_Comm_rank` or `MPI_Comm_size` of `PETSC_COMM_WORLD` (0 on failure,
+/// which MPI's default error handler does not return from).
+fn comm_query(query: unsafe extern "C" fn(ffi::MPI_Comm, *mut c_int) -> c_int) -> usize {
+    let mut value = 0;
+    // SAFETY: PETSc is initialised (the caller holds a `Petsc`, or checked).
+    unsafe { query(ffi::PETSC_COMM_WORLD, &mut value) };
+    value as usize
+}
+
+/// Whether PETSc is initialised in this process.
+fn initialized() -> Result<bool, Error> {
+    let mut flag: ffi::PetscBool = 0;
+    call!(PetscInitialized(&mut flag))?;
+    Ok(flag != 0)
+}
+
+/// What a PETSc solve used and did (`summary.json`).
+#[derive(Debug, Clone, Serialize, PartialEq)]
+pub struct PetscReport {
+    /// MPI processes.
+    pub processes: usize,
+    /// PETSc's rows (`d` per point with a free component).
+    pub rows: usize,
+    /// Krylov method (after the options database).
+    pub ksp: String,
+    /// Preconditioner (after the options database).
+    pub pc: String,
+    /// Iterations.
+    pub iterations: usize,
+    /// `KSPConvergedReason`, as PETSc names it.
+    pub converged_reason: String,
+}
+
+/// Owns a `Mat`.
+struct Matrix(ffi::Mat);
+/// Owns a `Vec`.
+struct Vector(ffi::Vec);
+/// Owns a `KSP` (and through it its `PC`).
+struct Krylov(ffi::KSP);
+/// Owns a `MatNullSpace`.
+struct NullSpace(ffi::MatNullSpace);
+/// Owns a `VecScatter`.
+struct Scatter(ffi::VecScatter);
+
+macro_rules! destroy_on_drop {
+    ($($owner:ident: $destroy:ident),*) => {$(
+        impl Drop for $owner {
+            fn drop(&mut self) {
+                if !self.0.is_null() {
+                    // SAFETY: created by PETSc and owned here alone.
+                    unsafe { ffi::$destroy(&mut self.0) };
+                }
+            }
+        }
+    )*};
+}
+
+destroy_on_drop!(
+    Matrix: MatDestroy,
+    Vector: VecDestroy,
+    Krylov: KSPDestroy,
+    NullSpace: MatNullSpaceDestroy,
+    Scatter: VecScatterDestroy
+);
+
+impl Vector {
+    /// Writes this process's entries from `fill` (index local to the process).
+    fn write(&mut self, fill: impl Fn(usize) -> f64, local: usize) -> Result<(), Error> {
+        let mut data: *mut f64 = null_mut();
+        call!(VecGetArray(self.0, &mut data))?;
+        if local > 0 {
+            // SAFETY: PETSc's array of this process's `local` entries.
+            let slice = unsafe { std::slice::from_raw_parts_mut(data, local) };
+            slice.iter_mut().enumerate().for_each(|(r, v)| *v = fill(r));
+        }
+        call!(VecRestoreArray(self.0, &mut data))
+    }
+}
+
+/// A distributed system set up in PETSc: the matrix, the Krylov solver with
+/// its multigrid built, and the vectors of the solve.
+pub(super) struct Solver {
+    krylov: Krylov,
+    x: Vector,
+    b: Vector,
+    _matrix: Matrix,
+    /// PETSc's rows in all.
+    global_rows: usize,
+    /// PETSc's row of every free unknown of dhpd.
+    rows: Vec<PetscInt>,
+    /// The free unknown of each of this process's rows (`PRESCRIBED`: an
+    /// identity row).
+    owned: Vec<u32>,
+    processes: usize,
+    /// The last solve's report.
+    pub(super) report: Option<PetscReport>,
+}
+
+impl Solver {
+    /// Hands this process's rows of `K` (`values` on `pattern`; `transpose`:
+    /// the transposed position of every entry when `K` is not symmetric,
+    /// PETSc wanting rows where dhpd stores columns) to PETSc, and sets up
+    /// CG (GMRES if not `symmetric`) with GAMG and the rigid motions of the
+    /// points of `layout`.
+    pub(super) fn new(
+        pattern: &Pattern,
+        values: &[f64],
+        transpose: Option<&[usize]>,
+        layout: Layout,
+        symmetric: bool,
+    ) -> Result<Self, Error> {
+        if !initialized()? {
+            return Err(NumericalError::Solver(
+                "solver.method = \"petsc\" needs PETSc initialised (dhpd's command line in a \
+                 build with the mpi feature does it; a library caller holds a dhpd::mpi::Petsc)"
+                    .into(),
+            )
+            .into());
+        }
+        // SAFETY: PETSc is initialised, so this global is set.
+        let comm = unsafe { ffi::PETSC_COMM_WORLD };
+        let (rank, processes) = (
+            comm_query(ffi::MPI_Comm_rank),
+            comm_query(ffi::MPI_Comm_size),
+        );
+        let numbering = Numbering::new(pattern, layout, processes)?;
+        let d = layout.d();
+        let (first, last) = (
+            numbering.bounds[rank] * d,
+            numbering.bounds[rank + 1] * d,
+        );
+        let LocalRows {
+            offsets,
+            columns,
+            values: entries,
+            owned,
+        } = local_rows(pattern, values, transpose, layout, &numbering, first..last)?;
+        let n_local = petsc_int(last - first, "rows")?;
+        let n_global = petsc_int(numbering.points.len() * d, "rows")?;
+        let mut matrix = Matrix(null_mut());
+        call!(MatCreate(comm, &mut matrix.0))?;
+        call!(MatSetSizes(matrix.0, n_local, n_local, n_global, n_global))?;
+        call!(MatSetBlockSize(matrix.0, d as PetscInt))?;
+        call!(MatSetType(matrix.0, c"aij".as_ptr()))?;
+        // Each is a no-op for the other type (one process: sequential AIJ);
+        // both copy the rows and assemble.
+        let (i, j, v) = (offsets.as_ptr(), columns.as_ptr(), entries.as_ptr());
+        call!(MatSeqAIJSetPreallocationCSR(matrix.0, i, j, v))?;
+        call!(MatMPIAIJSetPreallocationCSR(matrix.0, i, j, v))?;
+        drop((offsets, columns, entries));
+
+        let mut coordinates = Vector(null_mut());
+        call!(MatCreateVecs(matrix.0, &mut coordinates.0, null_mut()))?;
+        let point = |r: usize| numbering.points[(first + r) / d];
+        coordinates.write(|r| layout.x[point(r)][(first + r) % d], last - first)?;
+        let mut rigid = NullSpace(null_mut());
+        call!(MatNullSpaceCreateRigidBody(coordinates.0, &mut rigid.0))?;
+        call!(MatSetNearNullSpace(matrix.0, rigid.0))?;
+
+        let (mut x, mut b) = (Vector(null_mut()), Vector(null_mut()));
+        call!(MatCreateVecs(matrix.0, &mut x.0, &mut b.0))?;
+        let mut krylov = Krylov(null_mut());
+        call!(KSPCreate(comm, &mut krylov.0))?;
+        call!(KSPSetOperators(krylov.0, matrix.0, matrix.0))?;
+        if symmetric {
+            call!(KSPSetType(krylov.0, c"cg".as_ptr()))?;
+            call!(KSPSetNormType(krylov.0, ffi::KSP_NORM_UNPRECONDITIONED))?;
+        } else {
+            call!(KSPSetType(krylov.0, c"gmres".as_ptr()))?;
+            call!(KSPSetPCSide(krylov.0, ffi::PC_RIGHT))?;
+            call!(KSPGMRESSetRestart(krylov.0, GMRES_RESTART as PetscInt))?;
+        }
+        let mut pc = null_mut();
+        call!(KSPGetPC(krylov.0, &mut pc))?;
+        call!(PCSetType(pc, c"gamg".as_ptr()))?;
+        call!(KSPSetTolerances(
+            krylov.0,
+            GMRES_TOLERANCE,
+            ffi::PETSC_DEFAULT,
+            ffi::PETSC_DEFAULT,
+            ITERATIVE_BUDGET as PetscInt
+        ))?;
+        call!(KSPSetFromOptions(krylov.0))?;
+        call!(KSPSetUp(krylov.0))?;
+        Ok(Solver {
+            krylov,
+            x,
+            b,
+            _matrix: matrix,
+            global_rows: numbering.points.len() * d,
+            rows: numbering.rows,
+            owned,
+            processes,
+            report: None,
+        })
+    }
+
+    /// Solves `K x = rhs` (every process passes the whole `rhs` and receives
+    /// the whole `x`); an error when PETSc's Krylov method did not converge.
+    pub(super) fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<usize, Error> {
+        let owned = &self.owned;
+        let value = |r: usize| match owned[r] {
+            PRESCRIBED => 0.0,
+            k => rhs[k as usize],
+        };
+        self.b.write(value, owned.len())?;
+        call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
+        let (mut iterations, mut reason) = (0, 0);
+        call!(KSPGetIterationNumber(self.krylov.0, &mut iterations))?;
+        call!(KSPGetConvergedReason(self.krylov.0, &mut reason))?;
+        let report = self.report(iterations as usize, reason)?;
+        if reason < 0 {
+            return Err(NumericalError::Solver(format!(
+                "PETSc's {} preconditioned by {} did not converge ({} after {} iterations, \
+                 relative tolerance {GMRES_TOLERANCE:.0e}); PETSc's options (-ksp_monitor, \
+                 -ksp_type, -pc_type) show or change what it does, and solver.method = \
+                 \"iterative\" solves on one process",
+                report.ksp, report.pc, report.converged_reason, report.iterations
+            ))
+            .into());
+        }
+        self.gather(x)?;
+        self.report = Some(report);
+        Ok(iterations as usize)
+    }
+
+    /// The whole solution on every process, in dhpd's unknowns.
+    fn gather(&mut self, x: &mut [f64]) -> Result<(), Error> {
+        let (mut scatter, mut all) = (Scatter(null_mut()), Vector(null_mut()));
+        call!(VecScatterCreateToAll(self.x.0, &mut scatter.0, &mut all.0))?;
+        let mode = (ffi::INSERT_VALUES, ffi::SCATTER_FORWARD);
+        call!(VecScatterBegin(scatter.0, self.x.0, all.0, mode.0, mode.1))?;
+        call!(VecScatterEnd(scatter.0, self.x.0, all.0, mode.0, mode.1))?;
+        let mut data: *const f64 = null();
+        call!(VecGetArrayRead(all.0, &mut data))?;
+        if self.global_rows > 0 {
+            // SAFETY: the gathered vector holds every row.
+            let all = unsafe { std::slice::from_raw_parts(data, self.global_rows) };
+            x.iter_mut()
+                .zip(&self.rows)
+                .for_each(|(v, &r)| *v = all[r as usize]);
+        }
+        call!(VecRestoreArrayRead(all.0, &mut data))
+    }
+
+    /// The report of a solve that took `iterations` and stopped for `reason`.
+    fn report(&self, iterations: usize, reason: c_int) -> Result<PetscReport, Error> {
+        let (mut ksp, mut pc_type, mut pc) = (null(), null(), null_mut());
+        call!(KSPGetType(self.krylov.0, &mut ksp))?;
+        call!(KSPGetPC(self.krylov.0, &mut pc))?;
+        call!(PCGetType(pc, &mut pc_type))?;
+        let text = |s: *const c_char| {
+            if s.is_null() {
+                String::new()
+            } else {
+                // SAFETY: PETSc's NUL-terminated type names and reasons.
+                unsafe { CStr::from_ptr(s) }.to_string_lossy().into_owned()
+            }
+        };
+        // SAFETY: PETSc's table covers every KSPConvergedReason (it is
+        // shifted so that negative reasons index before its start).
+        let reason_name = unsafe { *ffi::KSPConvergedReasons.offset(reason as isize) };
+        Ok(PetscReport {
+            processes: self.processes,
+            rows: self.global_rows,
+            ksp: text(ksp),
+            pc: text(pc_type),
+            iterations,
+            converged_reason: text(reason_name),
+        })
+    }
+}
+
+/// `n` as a `PetscInt`, or an error naming `what` (32-bit indices).
+fn petsc_int(n: usize, what: &str) -> Result<PetscInt, Error> {
+    PetscInt::try_from(n).map_err(|_| {
+        NumericalError::Solver(format!(
+            "{n} {what} exceed the 32-bit indices of this PETSc (a 64-bit-index build, \
+             Debian's libpetsc64-real-dev, would need dhpd's PetscInt changed to i64)"
+        ))
+        .into()
+    })
+}
+
+/// PETSc's numbering: `d` rows per point with a free component, in point
+/// order, split into contiguous blocks of points, one per process.
+struct Numbering {
+    /// The points with a free component (PETSc's block `s` is `points[s]`).
+    points: Vec<usize>,
+    /// PETSc's row of every free unknown.
+    rows: Vec<PetscInt>,
+    /// Process `r` owns the blocks `bounds[r]..bounds[r + 1]`.
+    bounds: Vec<usize>,
+}
+
+impl Numbering {
+    fn new(pattern: &Pattern, layout: Layout, processes: usize) -> Result<Self, Error> {
+        let dofs = layout.dofs;
+        let d = layout.d();
+        let mut points: Vec<usize> = Vec::new();
+        let mut rows = Vec::with_capacity(dofs.free_dofs.len());
+        for &(i, c) in &dofs.free_dofs {
+            // Free unknowns are numbered point by point (`DofMap::new`).
+            if points.last() != Some(&(i as usize)) {
+                points.push(i as usize);
+            }
+            rows.push(petsc_int((points.len() - 1) * d + c as usize, "rows")?);
+        }
+        petsc_int(points.len() * d, "rows")?;
+        // Balance by stored entries of K (an identity row counts one).
+        let weight = |i: usize| -> usize {
+            (0..d)
+                .map(|c| match dofs.free_index[3 * i + c] {
+                    PRESCRIBED => 1,
+                    k => pattern.col_ptr[k as usize + 1] - pattern.col_ptr[k as usize],
+                })
+                .sum()
+        };
+        let total: usize = points.iter().map(|&i| weight(i)).sum();
+        let mut bounds = vec![0];
+        let mut sum = 0;
+        for (s, &i) in points.iter().enumerate() {
+            sum += weight(i);
+            // Block s closes every process whose share of the total it reaches.
+            while bounds.len() < processes && sum * processes >= bounds.len() * total {
+                bounds.push(s + 1);
+            }
+        }
+        bounds.resize(processes + 1, points.len());
+        Ok(Numbering {
+            points,
+            rows,
+            bounds,
+        })
+    }
+}
+
+/// One process's rows of `K` in CSR form with PETSc's column numbers.
+struct LocalRows {
+    offsets: Vec<PetscInt>,
+    columns: Vec<PetscInt>,
+    values: Vec<f64>,
+    /// The free unknown of each row (`PRESCRIBED`: an identity row).
+    owned: Vec<u32>,
+}
+
+/// PETSc's rows `range` of `K` (module docs: identity rows for prescribed
+/// components, scaled by the mean diagonal).
+fn local_rows(
+    pattern: &Pattern,
+    values: &[f64],
+    transpose: Option<&[usize]>,
+    layout: Layout,
+    numbering: &Numbering,
+    range: std::ops::Range<usize>,
+) -> Result<LocalRows, Error> {
+    let d = layout.d();
+    let free_index = &layout.dofs.free_index;
+    let diagonal = |k: usize| {
+        let rows = &pattern.row_idx[pattern.col_ptr[k]..pattern.col_ptr[k + 1]];
+        rows.binary_search(&k)
+            .map_or(0.0, |p| values[pattern.col_ptr[k] + p].abs())
+    };
+    let n = numbering.rows.len();
+    let identity = (0..n).map(diagonal).sum::<f64>() / n.max(1) as f64;
+    let mut local = LocalRows {
+        offsets: vec![0],
+        columns: Vec::new(),
+        values: Vec::new(),
+        owned: Vec::with_capacity(range.len()),
+    };
+    for row in range {
+        let (point, c) = (numbering.points[row / d], row % d);
+        let k = free_index[3 * point + c];
+        local.owned.push(k);
+        if k == PRESCRIBED {
+            local.columns.push(petsc_int(row, "rows")?);
+            local.values.push(identity);
+        } else {
+            // Row k of K is column k of Kᵀ: the pattern is symmetric.
+            let k = k as usize;
+            for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
+                local.columns.push(numbering.rows[pattern.row_idx[p]]);
+                local.values.push(values[transpose.map_or(p, |t| t[p])]);
+            }
+        }
+        local
+            .offsets
+            .push(petsc_int(local.columns.len(), "entries on one process")?);
+    }
+    Ok(local)
+}

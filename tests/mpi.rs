@@ -1,0 +1,169 @@
+//! MPI runs through PETSc (`solver.method = "petsc"`, the `mpi` feature):
+//! every scene of `tests/mpi/scenes` solved on 1, 2 and 3 processes
+//! (oversubscribed on a 2-core machine) gives the displacement of the default
+//! single-process route (Cholesky, or GMRES for the shear model) to 1e-8 of
+//! max|u| at every point, and rank 0 alone writes the results.
+//!
+//! `cargo test --profile ci --features mpi --test mpi` (needs `mpirun` on
+//! PATH: Debian's `petsc-dev` brings Open MPI).
+#![cfg(feature = "mpi")]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Largest difference from the single-process answer, relative to its max|u|.
+const AGREEMENT: f64 = 1e-8;
+
+/// The scenes, each small enough to solve in about a second.
+const SCENES: [&str; 5] = [
+    "plate_hole",
+    "plate_hole_fine",
+    "cracked_plate",
+    "block3d",
+    "shear_hole",
+];
+
+fn scene_path(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/mpi/scenes/{name}.toml"))
+}
+
+/// Runs `dhpd run scene --out out`, on `processes` MPI processes when given.
+fn run(scene: &Path, out: &Path, processes: Option<usize>) {
+    let dhpd = env!("CARGO_BIN_EXE_dhpd");
+    let mut command = match processes {
+        Some(n) => {
+            let mut c = Command::new("mpirun");
+            c.args([
+                "--allow-run-as-root",
+                "--oversubscribe",
+                "--bind-to",
+                "none",
+            ])
+            .args(["-np", &n.to_string(), dhpd]);
+            c
+        }
+        None => Command::new(dhpd),
+    };
+    // One thread per process: up to three processes share two cores.
+    let output = command
+        .env("RAYON_NUM_THREADS", "1")
+        .arg("run")
+        .arg(scene)
+        .arg("--out")
+        .arg(out)
+        .output()
+        .expect("mpirun and dhpd start");
+    assert!(
+        output.status.success(),
+        "{} on {processes:?} processes failed:\n{}\n{}",
+        scene.display(),
+        String::from_utf8_lossy(&output.stdout),
+        String::from_utf8_lossy(&output.stderr)
+    );
+}
+
+/// The displacement of every point, from `points.csv` (the `u_*` columns).
+fn displacements(out: &Path) -> Vec<Vec<f64>> {
+    let text = std::fs::read_to_string(out.join("points.csv")).expect("points.csv");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    let columns: Vec<usize> = (0..header.len())
+        .filter(|&c| header[c].starts_with("u_"))
+        .collect();
+    lines
+        .map(|line| {
+            let fields: Vec<&str> = line.split(',').collect();
+            columns
+                .iter()
+                .map(|&c| fields[c].parse().expect("a number"))
+                .collect()
+        })
+        .collect()
+}
+
+fn summary(out: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(out.join("summary.json")).expect("summary.json");
+    serde_json::from_str(&text).expect("JSON")
+}
+
+#[test]
+fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut failures = Vec::new();
+    for name in SCENES {
+        let scene = scene_path(name);
+        // The reference: the same scene with the default route.
+        let text = std::fs::read_to_string(&scene).unwrap();
+        let reference_scene = dir.join(format!("{name}_reference.toml"));
+        std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
+        let reference_out = dir.join(format!("{name}_reference"));
+        run(&reference_scene, &reference_out, None);
+        let reference = displacements(&reference_out);
+        let max_u = reference
+            .iter()
+            .map(|u| u.iter().map(|v| v * v).sum::<f64>().sqrt())
+            .fold(0.0, f64::max);
+        assert!(max_u > 0.0, "{name}: the reference moves");
+        for processes in [1, 2, 3] {
+            let out = dir.join(format!("{name}_np{processes}"));
+            run(&scene, &out, Some(processes));
+            let u = displacements(&out);
+            assert_eq!(u.len(), reference.len(), "{name}: the same points");
+            let difference = u
+                .iter()
+                .zip(&reference)
+                .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+                .fold(0.0, f64::max);
+            let s = summary(&out);
+            let petsc = &s["counts"]["petsc"];
+            eprintln!(
+                "{name} on {processes} process(es): {} {} {} iterations, residual {:.1e}, \
+                 max difference {:.1e} of max|u| = {max_u:.4e}",
+                petsc["ksp"],
+                petsc["pc"],
+                petsc["iterations"],
+                s["relative_residual"].as_f64().unwrap_or(f64::NAN),
+                difference / max_u
+            );
+            assert_eq!(petsc["processes"], processes, "{name}: processes reported");
+            if !(difference <= AGREEMENT * max_u) {
+                failures.push(format!(
+                    "{name} on {processes} process(es): differs by {:.2e} of max|u|",
+                    difference / max_u
+                ));
+            }
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+#[test]
+fn several_processes_refuse_a_route_that_would_solve_on_each() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-refuse-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scene_path("plate_hole")).unwrap();
+    let scene = dir.join("cholesky.toml");
+    std::fs::write(&scene, text.replace("\"petsc\"", "\"cholesky\"")).unwrap();
+    let output = Command::new("mpirun")
+        .args([
+            "--allow-run-as-root",
+            "--oversubscribe",
+            "--bind-to",
+            "none",
+        ])
+        .args(["-np", "2", env!("CARGO_BIN_EXE_dhpd"), "run"])
+        .arg(&scene)
+        .arg("--out")
+        .arg(dir.join("out"))
+        .output()
+        .expect("mpirun starts");
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(!output.status.success());
+    assert!(
+        stderr.contains("solver.method: this run has 2 processes"),
+        "{stderr}"
+    );
+}
