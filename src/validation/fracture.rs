@@ -870,7 +870,7 @@ impl Strip {
         }
         // Energy per spacing of depth in the steady window, over G₀ × its area.
         let mut depth_profile = vec![0.0; self.depth_cells];
-        for &(x, z, e) in &booking.booked {
+        for &(x, z, e) in booking.booked.iter().filter(|_| self.depth_cells > 0) {
             if (start..end).contains(&x) {
                 let k = ((z / h).floor().max(0.0) as usize).min(self.depth_cells - 1);
                 depth_profile[k] += e / (g0 * h * (end - start));
