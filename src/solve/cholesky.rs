@@ -318,6 +318,13 @@ impl Cholesky {
         self.pivot_stats
     }
 
+    /// The current factor in double precision, for the halves of its solve
+    /// ([`super::triangular`]); `None` before a factorisation or in single precision.
+    pub fn double_factor(&self) -> Option<super::triangular::Llt<'_>> {
+        (self.factored && self.single.is_none())
+            .then(|| super::triangular::Llt::new(&self.symbolic, &self.factor))
+    }
+
     /// Solves `K x = b` in place with the current factor.
     pub fn solve_in_place(&self, b: &mut [f64]) {
         self.solve_columns_in_place(b, 1);

@@ -1,21 +1,27 @@
 //! Exact re-solves after rank-one changes of a factorised matrix
-//! (Sherman–Morrison–Woodbury).
+//! (Sherman–Morrison–Woodbury), with the terms carried through the factor's
+//! forward half only.
 //!
 //! A broken bond-based bond removes the rank-one term `k g gᵀ` from `K`
 //! (formulation Sec. 3: `g` is `e` on the owner's free unknowns and `−e` on the
-//! neighbour's). After `r` such terms since the factorisation `M = L Lᵀ`,
-//! `K = M − U D Uᵀ` (`U = [g₁ … g_r]`, `D = diag(k)`), and
+//! neighbour's). After `r` such terms since the factorisation
+//! `M = Pᵀ L Lᵀ P`, `K = M − U D Uᵀ` (`U = [g₁ … g_r]`, `D = diag(k)`), and with
+//! `W = L⁻¹ P U`
 //!
 //! ```text
-//! K⁻¹ b = y + Z S⁻¹ Uᵀ y,   y = M⁻¹ b,   Z = M⁻¹ U,   S = D⁻¹ − Uᵀ Z
+//! K⁻¹ b = Pᵀ L⁻ᵀ (c + W S⁻¹ Wᵀ c),   c = L⁻¹ P b,   S = D⁻¹ − Wᵀ W
 //! ```
 //!
-//! Each new term costs one solve with the old factor (for its column of `Z`,
-//! several terms in one blocked solve) and a row of the Cholesky factor of `S`;
-//! a re-solve costs `O(n r)`. `S` is positive definite exactly when `K` is, so a
-//! failing pivot of `S` flags a mechanism (the caller then factorises afresh,
-//! which names the point).
+//! (`M⁻¹ U S⁻¹ Uᵀ M⁻¹ = Pᵀ L⁻ᵀ W S⁻¹ Wᵀ L⁻¹ P`). A term's `g` has the few
+//! unknowns of two points, so its column of `W` is non-zero only on the
+//! elimination-tree path above them ([`super::triangular`]): a new term costs a
+//! sparse forward solve and a row of the Cholesky factor of `S` (dot products
+//! of paths, which meet only at common ancestors); a re-solve costs one
+//! backward half-solve and `O(nnz W)`. `S` is positive definite exactly when
+//! `K` is, so a failing pivot of `S` flags a mechanism (the caller then
+//! factorises afresh, which names the point).
 
+use super::triangular::{Llt, PathColumn};
 use rayon::prelude::*;
 
 /// A rank-one term `k g gᵀ` removed from the matrix: `g` as `(free unknown, value)`.
@@ -30,15 +36,12 @@ pub struct Term {
 /// Pivot of `S`, relative to its diagonal entry, below which `K` counts as singular.
 const PIVOT_RATIO: f64 = 1e-12;
 
-/// Rows of `x = y + Z w` one thread updates at a time (32 KiB of `x`).
-const APPLY_CHUNK: usize = 4096;
-
-/// The terms removed since the last factorisation and what their solves cost.
+/// The terms removed since the last factorisation.
 #[derive(Debug, Default)]
 pub struct LowRank {
     terms: Vec<Term>,
-    /// `Z = M⁻¹ U`, one column of length `n` per term.
-    z: Vec<Vec<f64>>,
+    /// `W = L⁻¹ P U`, one path column per term.
+    w: Vec<PathColumn>,
     /// Rows of the lower Cholesky factor of `S`.
     s_factor: Vec<Vec<f64>>,
 }
@@ -57,47 +60,34 @@ impl LowRank {
     /// Forgets every term (after a fresh factorisation).
     pub fn clear(&mut self) {
         self.terms.clear();
-        self.z.clear();
+        self.w.clear();
         self.s_factor.clear();
     }
 
-    /// Bytes held by `Z`.
+    /// Bytes held by `W` and the factor of `S`.
     pub fn bytes(&self) -> usize {
-        self.z.iter().map(|c| c.len() * 8).sum()
+        let w: usize = self.w.iter().map(|c| c.len() * 8).sum();
+        w + self.len() * (self.len() + 1) * 4
     }
 
-    /// Adds `terms`; `solve_block(v, m)` applies `M⁻¹` in place to the `m`
-    /// columns of length `n` stored one after the other in `v`. Returns `false`
-    /// (and keeps the previous state) when `S` stops being positive definite.
-    pub fn extend(
-        &mut self,
-        terms: Vec<Term>,
-        n: usize,
-        solve_block: &dyn Fn(&mut [f64], usize),
-    ) -> bool {
-        if terms.is_empty() {
-            return true;
-        }
-        let m = terms.len();
-        let mut block = vec![0.0; n * m];
-        for (c, term) in terms.iter().enumerate() {
-            for &(i, v) in &term.entries {
-                block[c * n + i] = v;
-            }
-        }
-        solve_block(&mut block, m);
+    /// Adds `terms` removed from the matrix factorised as `factor`. Returns
+    /// `false` (and keeps the previous state) when `S` stops being positive
+    /// definite.
+    pub fn extend(&mut self, terms: Vec<Term>, factor: Llt<'_>) -> bool {
         let before = self.len();
-        for (c, term) in terms.into_iter().enumerate() {
-            let z = block[c * n..(c + 1) * n].to_vec();
-            // Row of S for the new term: S_ca = δ_ca / k_c − u_aᵀ z_c.
-            let k = self.terms.len();
-            let mut row = Vec::with_capacity(k + 1);
-            for a in 0..k {
-                let s_ca = -dot_sparse(&self.terms[a].entries, &z);
+        let paths: Vec<PathColumn> = terms
+            .par_iter()
+            .map(|t| factor.forward_sparse(&t.entries))
+            .collect();
+        for (term, w) in terms.into_iter().zip(paths) {
+            // Row of S for the new term: S_ca = δ_ca / k_c − w_aᵀ w_c.
+            let s_row: Vec<f64> = self.w.par_iter().map(|wa| -wa.dot(&w)).collect();
+            let mut row = Vec::with_capacity(s_row.len() + 1);
+            for (a, s_ca) in s_row.into_iter().enumerate() {
                 let partial: f64 = (0..a).map(|q| row[q] * self.s_factor[a][q]).sum();
                 row.push((s_ca - partial) / self.s_factor[a][a]);
             }
-            let s_cc = 1.0 / term.stiffness - dot_sparse(&term.entries, &z);
+            let s_cc = 1.0 / term.stiffness - w.dot(&w);
             let pivot = s_cc - row.iter().map(|v| v * v).sum::<f64>();
             if !(pivot > PIVOT_RATIO * (1.0 / term.stiffness)) {
                 self.truncate(before);
@@ -105,7 +95,7 @@ impl LowRank {
             }
             row.push(pivot.sqrt());
             self.terms.push(term);
-            self.z.push(z);
+            self.w.push(w);
             self.s_factor.push(row);
         }
         true
@@ -113,50 +103,36 @@ impl LowRank {
 
     fn truncate(&mut self, len: usize) {
         self.terms.truncate(len);
-        self.z.truncate(len);
+        self.w.truncate(len);
         self.s_factor.truncate(len);
     }
 
-    /// `K⁻¹ b` from `y = M⁻¹ b`: `y + Z S⁻¹ Uᵀ y`.
-    pub fn apply(&self, y: &[f64]) -> Vec<f64> {
+    /// `K⁻¹ b` from `c = L⁻¹ P b` ([`Llt::forward`]): `Pᵀ L⁻ᵀ (c + W S⁻¹ Wᵀ c)`.
+    pub fn apply(&self, factor: Llt<'_>, c: &[f64]) -> Vec<f64> {
         let k = self.len();
-        let mut w: Vec<f64> = self
-            .terms
-            .iter()
-            .map(|t| dot_sparse(&t.entries, y))
-            .collect();
-        // S w' = w with S = F Fᵀ: forward, then backward substitution.
+        let mut t: Vec<f64> = self.w.par_iter().map(|wa| wa.dot_dense(c)).collect();
+        // S t' = t with S = F Fᵀ: forward, then backward substitution.
         for a in 0..k {
-            let s: f64 = (0..a).map(|q| self.s_factor[a][q] * w[q]).sum();
-            w[a] = (w[a] - s) / self.s_factor[a][a];
+            let s: f64 = (0..a).map(|q| self.s_factor[a][q] * t[q]).sum();
+            t[a] = (t[a] - s) / self.s_factor[a][a];
         }
         for a in (0..k).rev() {
-            let s: f64 = (a + 1..k).map(|q| self.s_factor[q][a] * w[q]).sum();
-            w[a] = (w[a] - s) / self.s_factor[a][a];
+            let s: f64 = (a + 1..k).map(|q| self.s_factor[q][a] * t[q]).sum();
+            t[a] = (t[a] - s) / self.s_factor[a][a];
         }
-        // x = y + Z w, by chunks of rows in parallel; every entry sums the
-        // columns in order, as a sequential loop would.
-        let mut x = y.to_vec();
-        x.par_chunks_mut(APPLY_CHUNK)
-            .enumerate()
-            .for_each(|(c, chunk)| {
-                let start = c * APPLY_CHUNK;
-                for (column, &wa) in self.z.iter().zip(&w) {
-                    let z = &column[start..start + chunk.len()];
-                    chunk.iter_mut().zip(z).for_each(|(xi, zi)| *xi += wa * zi);
-                }
-            });
-        x
+        let mut c = c.to_vec();
+        for (wa, &ta) in self.w.iter().zip(&t) {
+            wa.add_to(ta, &mut c);
+        }
+        factor.backward(c)
     }
-}
-
-fn dot_sparse(entries: &[(usize, f64)], dense: &[f64]) -> f64 {
-    entries.iter().map(|&(i, v)| v * dense[i]).sum()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solve::cholesky::Cholesky;
+    use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
     /// A dense SPD matrix minus rank-one terms, solved through the Woodbury
     /// form with the exact inverse of the original, equals the direct solve;
@@ -202,13 +178,22 @@ mod tests {
             }
             x
         };
+        // The factor of the original matrix (faer, AMD order).
         let m0 = matrix(&[]);
-        let solve_block = |v: &mut [f64], cols: usize| {
-            for c in 0..cols {
-                let x = solve(&m0, &v[c * n..(c + 1) * n]);
-                v[c * n..(c + 1) * n].copy_from_slice(&x);
+        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
+        for c in 0..n {
+            for (r, row) in m0.iter().enumerate() {
+                if row[c] != 0.0 {
+                    row_idx.push(r);
+                    values.push(row[c]);
+                }
             }
-        };
+            col_ptr.push(row_idx.len());
+        }
+        let pattern = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
+        let mut chol = Cholesky::analyse(pattern, None).unwrap();
+        chol.factorize(SparseColMatRef::new(pattern, &values)).unwrap();
+        let llt = chol.double_factor().unwrap();
         // Spring s between unknowns s−1 and s: g = e_{s−1} − e_s.
         let term = |s: usize, k: f64| Term {
             entries: [(s.wrapping_sub(1), 1.0), (s, -1.0)]
@@ -219,9 +204,9 @@ mod tests {
         };
         let b: Vec<f64> = (0..n).map(|i| 1.0 + i as f64).collect();
         let mut low = LowRank::default();
-        assert!(low.extend(vec![term(2, 1.0), term(4, 0.5)], n, &solve_block));
-        assert!(low.extend(vec![term(0, 1.5)], n, &solve_block));
-        let x = low.apply(&solve(&m0, &b));
+        assert!(low.extend(vec![term(2, 1.0), term(4, 0.5)], llt));
+        assert!(low.extend(vec![term(0, 1.5)], llt));
+        let x = low.apply(llt, &llt.forward(&b));
         let direct = solve(&matrix(&[(2, 1.0), (4, 0.5), (0, 1.5)]), &b);
         for (a, c) in x.iter().zip(&direct) {
             assert!(
@@ -232,7 +217,7 @@ mod tests {
         // Removing all of spring 3 splits the chain... but both halves stay held
         // by the end springs; removing spring 0 entirely and spring 1 too leaves
         // unknown 0 held by nothing: singular, refused, state kept.
-        assert!(!low.extend(vec![term(0, 0.5), term(1, 1.0)], n, &solve_block));
+        assert!(!low.extend(vec![term(0, 0.5), term(1, 1.0)], llt));
         assert_eq!(low.len(), 3);
     }
 }

@@ -16,7 +16,9 @@
 //!   factor, or Krylov iterations preconditioned by it);
 //! - [`cholesky`], [`lu`]: the sparse factors (faer); [`refine`]: iterative
 //!   refinement; [`cg`], [`gmres`]: the Krylov methods; [`low_rank`]: the
-//!   Sherman–Morrison–Woodbury update; [`ordering`]: geometric nested
+//!   Sherman–Morrison–Woodbury update; [`triangular`]: the halves of a
+//!   Cholesky solve and sparse forward solves along the elimination tree;
+//!   [`ordering`]: geometric nested
 //!   dissection; [`two_level`]: the preconditioner of the iterative route;
 //!   `petsc` (the `mpi` feature): PETSc's distributed Krylov solvers and
 //!   algebraic multigrid on the processes of an MPI run.
@@ -32,6 +34,7 @@ pub mod petsc;
 pub mod pipeline;
 pub mod refine;
 pub mod route;
+pub mod triangular;
 pub mod two_level;
 
 use crate::assembly::dofs::DofMap;

@@ -67,10 +67,6 @@ pub const ITERATIVE_BUDGET: usize = 2000;
 /// GMRES restart length.
 pub(super) const GMRES_RESTART: usize = 60;
 
-/// An update solve that costs more than this fraction of a fresh factorisation
-/// and solve makes the next re-solve factorise afresh.
-const UPDATE_BUDGET: f64 = 0.2;
-
 /// Largest memory for the columns of the low-rank update (bytes), unless the
 /// factor itself is larger.
 const UPDATE_MEMORY: usize = 256 << 20;
@@ -196,10 +192,15 @@ pub struct Pipeline {
     costs: Costs,
     /// Rank-one terms removed since the factorisation (bond-based re-solves).
     low_rank: LowRank,
-    /// The last right-hand side and `M⁻¹` of it (the old factor's solve).
-    factor_solution: Option<(Vec<f64>, Vec<f64>)>,
-    /// An update cost more than [`UPDATE_BUDGET`] of a fresh solve: factorise next time.
+    /// The last right-hand side of an update and the old factor's forward
+    /// half-solve of it, `L⁻¹ P b` (kept while the factor and `b` are unchanged).
+    factor_forward: Option<(Vec<f64>, Vec<f64>)>,
+    /// The updates have cost more than a fresh solve: factorise next time.
     refactor_next: bool,
+    /// Fastest update since the factorisation, and what the updates cost
+    /// above it in all (s): the part of their cost that grows with the terms.
+    update_floor: f64,
+    update_excess: f64,
     /// Symbolic analysis time (s).
     pub symbolic_seconds: f64,
     /// The Cholesky factor's ordering (None for LU).
@@ -247,8 +248,10 @@ impl Pipeline {
             factored: false,
             costs: Costs::default(),
             low_rank: LowRank::default(),
-            factor_solution: None,
+            factor_forward: None,
             refactor_next: false,
+            update_floor: f64::INFINITY,
+            update_excess: 0.0,
             symbolic_seconds: t.elapsed().as_secs_f64(),
             ordering: chosen.ordering,
         })
@@ -503,7 +506,9 @@ impl Pipeline {
         self.accept(&x, fresh.residual, fresh.refinement_steps, fresh.at_floor)?;
         self.low_rank.clear();
         self.refactor_next = false;
-        self.factor_solution = (self.source == Source::Matrix).then(|| (rhs.to_vec(), x.clone()));
+        self.update_floor = f64::INFINITY;
+        self.update_excess = 0.0;
+        self.factor_forward = None;
         self.costs.fresh_seconds = factor_seconds + solve_seconds;
         self.costs.fresh_residual = fresh.residual;
         if self.costs.iteration_seconds == 0.0 {
@@ -926,21 +931,26 @@ impl Pipeline {
 
     /// The old factor's solve, corrected by the low-rank terms removed since.
     fn precondition(&self, k: &Stiffness, v: &mut [f64]) {
+        if let (Factor::Cholesky(c), false) = (&self.factor, self.low_rank.is_empty()) {
+            // Terms are only ever added to a double-precision factor.
+            if let Some(llt) = c.double_factor() {
+                let x = self.low_rank.apply(llt, &llt.forward(v));
+                v.copy_from_slice(&x);
+                return;
+            }
+        }
         match &self.factor {
             Factor::TwoLevel(Some(t)) => t.apply(&|x: &[f64]| self.product(k, x), v),
             factor => factor.solve_in_place(v),
-        }
-        if !self.low_rank.is_empty() {
-            let x = self.low_rank.apply(v);
-            v.copy_from_slice(&x);
         }
     }
 
     /// Re-solves after `K` lost the rank-one `terms` (bonds that broke) since
     /// the last solve, updating the old Cholesky factor exactly (module docs of
     /// [`super::low_rank`]); falls back to [`Pipeline::resolve`] when the route
-    /// has no Cholesky factor of `K`, when the update would cost more than a
-    /// fresh factorisation is worth, or when its answer misses the tolerance.
+    /// has no Cholesky factor of `K`, when the updates since the factorisation
+    /// have cost more than a fresh one (refactorises instead), or when its
+    /// answer misses the tolerance.
     pub fn resolve_update(
         &mut self,
         layout: Layout,
@@ -950,33 +960,30 @@ impl Pipeline {
         terms: Vec<Term>,
         notes: &mut Notes,
     ) -> Result<Solved, Error> {
-        let chol = match (&self.factor, self.source, self.factored) {
-            (Factor::Cholesky(c), Source::Matrix, true) if self.symmetric => c,
-            _ => return self.resolve(layout, m, rhs, x0, notes),
+        let llt = match (&self.factor, self.source, self.factored) {
+            (Factor::Cholesky(c), Source::Matrix, true) if self.symmetric => c.double_factor(),
+            _ => None,
         };
-        let memory = UPDATE_MEMORY.max(chol.nnz_l() * 8);
-        let grown = self.low_rank.bytes() + terms.len() * rhs.len() * 8;
-        if self.refactor_next || grown > memory {
+        let Some(llt) = llt else {
+            return self.resolve(layout, m, rhs, x0, notes);
+        };
+        let memory = UPDATE_MEMORY.max(llt.nnz() * 8);
+        if self.refactor_next || self.low_rank.bytes() > memory {
             return self.solve(layout, m, rhs, notes);
         }
         let t = Instant::now();
-        let n = rhs.len();
-        if !self.low_rank.extend(terms, n, &|v: &mut [f64], columns| {
-            chol.solve_columns_in_place(v, columns)
-        }) {
+        if !self.low_rank.extend(terms, llt) {
             // K is no longer positive definite: a fresh factorisation names the point.
             return self.solve(layout, m, rhs, notes);
         }
-        let y = match &self.factor_solution {
-            Some((b, y)) if b.as_slice() == rhs => y.clone(),
+        let c = match &self.factor_forward {
+            Some((b, c)) if b.as_slice() == rhs => c,
             _ => {
-                let mut y = rhs.to_vec();
-                chol.solve_in_place(&mut y);
-                self.factor_solution = Some((rhs.to_vec(), y.clone()));
-                y
+                let c = llt.forward(rhs);
+                &self.factor_forward.insert((rhs.to_vec(), c)).1
             }
         };
-        let x = self.low_rank.apply(&y);
+        let x = self.low_rank.apply(llt, c);
         let residual = relative_residual(&self.product(m.k, &x), rhs);
         let elapsed = t.elapsed().as_secs_f64();
         let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
@@ -985,7 +992,12 @@ impl Pipeline {
             fallback.report.solve_seconds += elapsed;
             return Ok(fallback);
         }
-        self.refactor_next = elapsed > UPDATE_BUDGET * self.costs.fresh_seconds;
+        // Rent or buy: an update's cost grows with the terms carried (their
+        // paths, S); once what the updates cost above the fastest of them adds
+        // up to a fresh factorisation and solve, the next re-solve factorises.
+        self.update_floor = self.update_floor.min(elapsed);
+        self.update_excess += elapsed - self.update_floor;
+        self.refactor_next = self.update_excess > self.costs.fresh_seconds;
         Ok(Solved {
             x,
             report: SolveReport {
