@@ -68,6 +68,13 @@ fn main() {
         times(Route::Update),
         times(Route::Reuse),
     );
+    let iterations = |route: Route| -> Vec<f64> {
+        s.solves
+            .iter()
+            .filter(|x| x.report.route == route)
+            .map(|x| x.report.iterations as f64)
+            .collect()
+    };
     let fresh_median = median(fresh.clone());
     let broken = s.records.last().map_or(0, |r| r.broken_total);
     println!(
@@ -75,18 +82,20 @@ fn main() {
         s.nnz_k,
         s.nnz_l.map_or("-".into(), |v| v.to_string())
     );
-    for (name, t) in [
-        ("fresh factorisation + solve", &fresh),
-        ("low-rank update of the old factor", &update),
-        ("Krylov re-solve with the old factor", &krylov),
+    for (name, t, route) in [
+        ("fresh factorisation + solve", &fresh, Route::Factor),
+        ("low-rank update of the old factor", &update, Route::Update),
+        ("Krylov re-solve with the old factor", &krylov, Route::Reuse),
     ] {
         if !t.is_empty() {
             let m = median(t.clone());
             println!(
-                "  {name}: {} solves, median {m:.4} s ({:.3} of a fresh one), total {:.2} s",
+                "  {name}: {} solves, median {m:.4} s ({:.3} of a fresh one), total {:.2} s, \
+                 median {} Krylov iterations",
                 t.len(),
                 m / fresh_median,
-                t.iter().sum::<f64>()
+                t.iter().sum::<f64>(),
+                median(iterations(route))
             );
         }
     }

@@ -61,9 +61,13 @@
 //!
 //! With overlap partial volumes (the default) the factor is interpolated linearly
 //! between the tabulated `m`; without correction or with the ramp, whose bond
-//! sets jump with `m`, it applies at the tabulated `m` only. Elsewhere,
-//! in 1D and 3D, and for points of a Gmsh mesh (an irregular cloud, not measured),
-//! the continuum value is used and the run says so.
+//! sets jump with `m`, it applies at the tabulated `m` only. In 3D the strip is
+//! 48 × 12 × 14 spacings (`Strip::new_3d`; `D` booked only for bonds whose
+//! midpoints lie 1.5 horizons or more inside both faces: the bulk's lattice, not
+//! the faces' skin) and the bond-based model is measured at `m = 3.015` with
+//! overlap volumes (only there). Elsewhere (1D, the shear model in 3D, points of
+//! a Gmsh mesh: an irregular cloud, not measured) the continuum value is used and
+//! the run says so.
 
 use crate::scene::{Dimension, EnergyCounting, ShearCriterion, VolumeCorrection};
 
@@ -88,6 +92,11 @@ const BOND_BASED_2D_OVERLAP: &[(f64, f64, f64)] = &[
     (5.015, 1.0897, 1.0539),
 ];
 
+/// `(m, D, r)` of the bond-based model, 3D, overlap partial volumes, at these `m`
+/// only (`cargo run --release --example fracture_calibration -- 3d 3.015`:
+/// 14,784 points, 133,760 bonds broken; validation/fracture/README.md Sec. 7).
+const BOND_BASED_3D_OVERLAP: &[(f64, f64, f64)] = &[(3.015, 1.0968, 1.0250)];
+
 /// `(m, D, r)` of the bond-based model, 2D, no partial-volume correction (at these
 /// `m` only: without partial volumes the bond set jumps between them).
 const BOND_BASED_2D_NONE: &[(f64, f64, f64)] = &[(3.015, 1.2756, 1.0684), (4.015, 1.0631, 1.0477)];
@@ -110,7 +119,8 @@ const SHEAR_POISSON_RATIO: f64 = 1.0 / 3.0;
 pub enum Uncalibrated {
     /// `m` outside the measured range.
     HorizonFactor,
-    /// No table for the dimension (1D, 3D).
+    /// No table for the dimension (1D; the shear model in 3D; the bond-based
+    /// model in 3D other than with overlap volumes at a measured `m`).
     Dimension,
     /// A point of a Gmsh mesh: an irregular cloud.
     Irregular,
@@ -123,7 +133,10 @@ impl Uncalibrated {
     pub fn explain(self) -> &'static str {
         match self {
             Uncalibrated::HorizonFactor => "the horizon factor is outside the measured range",
-            Uncalibrated::Dimension => "the dissipation factor is measured in 2D only",
+            Uncalibrated::Dimension => {
+                "the dissipation factor is measured in 2D, and in 3D only for the bond-based \
+                 model with overlap partial volumes at m = 3.015"
+            }
             Uncalibrated::Irregular => {
                 "points of a Gmsh mesh form an irregular cloud, whose factor is not measured"
             }
@@ -141,15 +154,18 @@ pub fn bond_based_factors(
     rule: VolumeCorrection,
     m: f64,
 ) -> Result<LatticeFactors, Uncalibrated> {
-    if !matches!(dimension, Dimension::PlaneStress | Dimension::PlaneStrain) {
-        return Err(Uncalibrated::Dimension);
+    match (dimension, rule) {
+        (Dimension::Three, VolumeCorrection::Overlap) => {
+            node(BOND_BASED_3D_OVERLAP, m).ok_or(Uncalibrated::Dimension)
+        }
+        (Dimension::PlaneStress | Dimension::PlaneStrain, rule) => match rule {
+            VolumeCorrection::Overlap => interpolate(BOND_BASED_2D_OVERLAP, m),
+            VolumeCorrection::None => node(BOND_BASED_2D_NONE, m),
+            VolumeCorrection::Ramp => node(BOND_BASED_2D_RAMP, m),
+        }
+        .ok_or(Uncalibrated::HorizonFactor),
+        _ => Err(Uncalibrated::Dimension),
     }
-    match rule {
-        VolumeCorrection::Overlap => interpolate(BOND_BASED_2D_OVERLAP, m),
-        VolumeCorrection::None => node(BOND_BASED_2D_NONE, m),
-        VolumeCorrection::Ramp => node(BOND_BASED_2D_RAMP, m),
-    }
-    .ok_or(Uncalibrated::HorizonFactor)
 }
 
 /// The mode-I lattice factors of a shear-model owner with horizon factor `m`
@@ -249,10 +265,30 @@ mod tests {
         assert_eq!(node(&t, 3.5), None);
     }
 
+    /// 3D: the bond-based model at the measured `m` with overlap volumes, and
+    /// nothing else (the reason names the dimension).
+    #[test]
+    fn three_dimensions_at_the_measured_horizon_factor_only() {
+        let three = |rule, m| bond_based_factors(Dimension::Three, rule, m);
+        assert_eq!(three(VolumeCorrection::Overlap, 3.015).unwrap().dissipation, 1.0968);
+        for (rule, m) in [
+            (VolumeCorrection::Overlap, 3.5),
+            (VolumeCorrection::None, 3.015),
+            (VolumeCorrection::Ramp, 3.015),
+        ] {
+            assert_eq!(three(rule, m), Err(Uncalibrated::Dimension));
+        }
+        assert_eq!(
+            bond_based_factors(Dimension::One, VolumeCorrection::Overlap, 3.015),
+            Err(Uncalibrated::Dimension)
+        );
+    }
+
     #[test]
     fn every_table_is_sorted() {
         for t in [
             BOND_BASED_2D_OVERLAP,
+            BOND_BASED_3D_OVERLAP,
             BOND_BASED_2D_NONE,
             BOND_BASED_2D_RAMP,
             SHEAR_2D_ENERGY,

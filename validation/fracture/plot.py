@@ -8,6 +8,8 @@ writes into results/ and the FEM reference in fem/; writes
   damage.png          damage maps: mode I (DH-PD band), shear grip, inclined crack
   kink.png            shear grip: the crack leaving the notch over resolution, m and lattice angle
   error_vs_time.png   peak-load error against run time, both models, three calibrations
+  three_d.png         3D notched bars (Sec. 7): reaction per unit depth against grip
+                      displacement, with the 3D FEM's critical load
 
 Run from the repository root:  python3 validation/fracture/plot.py
 (matplotlib and numpy; see requirements-plot.txt)
@@ -196,10 +198,46 @@ def plot_error_vs_time():
     fig.savefig(os.path.join(HERE, "error_vs_time.png"), dpi=120)
 
 
+# (curve file, label, depth [m]) of Sec. 7; the bond-based ones with the default
+# (dissipation) calibration, the shear model's with the continuum value.
+THREE_D = (
+    ("curve_sent_bond_based_event_n20_m3_3d_depth20mm.csv", "bond-based, W/20, T = 20 mm", 0.02),
+    ("curve_sent_bond_based_event_n30_m3_3d_depth30mm.csv", "bond-based, W/30, T = 30 mm", 0.03),
+    ("curve_sent_bond_based_event_n20_m3_3d_depth40mm.csv", "bond-based, W/20, T = 40 mm", 0.04),
+    ("curve_sent_shear_event_n20_m3_continuum_3d.csv", "shear (continuum), W/20, T = 20 mm", 0.02),
+)
+
+
+def plot_three_d():
+    with open(os.path.join(HERE, "fem", "reference_sent3d.json")) as f:
+        fem = json.load(f)["results"]
+    fig, ax = plt.subplots(figsize=(6, 4))
+    for k, (name, label, depth) in enumerate(THREE_D):
+        path = os.path.join(RESULTS, name)
+        if not os.path.exists(path):
+            continue
+        with open(path) as f:
+            curve = list(csv.DictReader(f))
+        ax.plot([1e6 * float(c["displacement"]) for c in curve],
+                [1e-3 * float(c["reaction_top_y"]) / depth for c in curve],
+                lw=0.9, color=f"C{k}", label=label)
+    for nu, style in (("nu_1/4", "k--"), ("nu_1/3", "k:")):
+        p_c = [fem[t][nu]["P_c_per_depth"] for t in ("T_0.02", "T_0.04")]
+        ax.axhline(1e-3 * sum(p_c) / 2, color="k", ls=style[1:], lw=1.0,
+                   label=f"3D FEM critical load, ν = {nu[3:]} (T = 20-40 mm)")
+    ax.set_xlabel("grip displacement [µm]")
+    ax.set_ylabel("reaction per unit depth [kN/m]")
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "three_d.png"), dpi=120)
+
+
 if __name__ == "__main__":
     plot_lefm()
     plot_curves()
     plot_damage()
     plot_kink()
     plot_error_vs_time()
+    plot_three_d()
     print("figures written to", HERE)
