@@ -303,15 +303,7 @@ pub fn fill_columns<M: Model>(
                         }
                     }
                 };
-                model.tangent_column(disc, q, Column::Owner, &mut add);
-                for &(owner, bond) in disc.bonds.incoming(q) {
-                    model.tangent_column(
-                        disc,
-                        owner as usize,
-                        Column::Neighbour(bond as usize),
-                        &mut add,
-                    );
-                }
+                column_blocks(model, disc, q, &mut add);
                 let mut pos = 0;
                 for c in (0..dofs.d).filter(|&c| dofs.free_index[3 * q + c] != PRESCRIBED) {
                     for (k, &p) in rows.iter().enumerate() {
@@ -328,6 +320,21 @@ pub fn fill_columns<M: Model>(
                 }
             },
         );
+}
+
+/// Every block `K_pq` of point column `q` of the tangent, as `add(p, block)`
+/// (a row point may come several times: the blocks sum): the terms of `q`'s own
+/// family and those of every bond by which another owner reaches `q`.
+fn column_blocks<M: Model>(
+    model: &M,
+    disc: &Discretization,
+    q: usize,
+    add: &mut dyn FnMut(usize, &Block),
+) {
+    model.tangent_column(disc, q, Column::Owner, add);
+    for &(owner, bond) in disc.bonds.incoming(q) {
+        model.tangent_column(disc, owner as usize, Column::Neighbour(bond as usize), add);
+    }
 }
 
 /// Gershgorin bound of the tangent of `model` on every degree of freedom (no
@@ -364,15 +371,7 @@ pub fn row_abs_sums<M: Model>(model: &M, disc: &Discretization) -> Vec<[f64; 3]>
                         }
                     }
                 };
-                model.tangent_column(disc, q, Column::Owner, &mut add);
-                for &(owner, bond) in disc.bonds.incoming(q) {
-                    model.tangent_column(
-                        disc,
-                        owner as usize,
-                        Column::Neighbour(bond as usize),
-                        &mut add,
-                    );
-                }
+                column_blocks(model, disc, q, &mut add);
                 for (k, &p) in rows.iter().enumerate() {
                     for r in 0..d {
                         sums[p][r] += (0..d).map(|c| acc[k][r][c].abs()).sum::<f64>();

@@ -410,11 +410,33 @@ pub(super) fn laplacian(
     (col_ptr, row_idx, values)
 }
 
+/// The AMD analysis of `structure` on the factor layout (simplicial or
+/// supernodal) that `threshold` forces, for the tests of both layouts.
+#[cfg(test)]
+pub(super) fn analyse_forced(
+    structure: SymbolicSparseColMatRef<'_, usize>,
+    threshold: faer::sparse::linalg::SupernodalThreshold,
+) -> Cholesky {
+    let params = faer::sparse::linalg::cholesky::CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: threshold,
+        ..Default::default()
+    };
+    let symbolic =
+        factorize_symbolic_cholesky(structure, Side::Lower, SymmetricOrdering::Amd, params)
+            .expect("symbolic analysis of a test matrix");
+    Cholesky {
+        symbolic,
+        factor: Vec::new(),
+        single: None,
+        factored: false,
+        pivot_stats: None,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::solve::relative_residual;
-    use faer::sparse::linalg::cholesky::CholeskySymbolicParams;
     use faer::sparse::linalg::SupernodalThreshold;
 
     /// The reported unknown is the one with the negative diagonal, on both of
@@ -430,20 +452,7 @@ mod tests {
                 let n = m * m;
                 let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
                 let matrix = SparseColMatRef::new(sym, &values);
-                let params = CholeskySymbolicParams {
-                    supernodal_flop_ratio_threshold: threshold,
-                    ..Default::default()
-                };
-                let symbolic =
-                    factorize_symbolic_cholesky(sym, Side::Lower, SymmetricOrdering::Amd, params)
-                        .unwrap();
-                let mut chol = Cholesky {
-                    symbolic,
-                    factor: Vec::new(),
-                    single: None,
-                    factored: false,
-                    pivot_stats: None,
-                };
+                let mut chol = analyse_forced(sym, threshold);
                 assert_eq!(
                     chol.factorize(matrix),
                     Err(FactorError::NonPositivePivot(bad)),

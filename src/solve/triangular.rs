@@ -419,13 +419,9 @@ impl Subtrees {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::cholesky::laplacian;
-    use faer::sparse::linalg::cholesky::{
-        factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymmetricOrdering,
-    };
+    use crate::solve::cholesky::{analyse_forced, laplacian};
     use faer::sparse::linalg::SupernodalThreshold;
     use faer::sparse::SymbolicSparseColMatRef;
-    use faer::Side;
 
     /// On both of faer's factor layouts: the two halves compose to the full
     /// solve (the supernodal backward half through subtrees on their own
@@ -441,14 +437,10 @@ mod tests {
             let n = m * m;
             let (col_ptr, row_idx, values) = laplacian(m, 0, 4.5);
             let sym = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
-            let params = CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: threshold,
-                ..Default::default()
-            };
-            let symbolic =
-                factorize_symbolic_cholesky(sym, Side::Lower, SymmetricOrdering::Amd, params)
-                    .unwrap();
-            if let SymbolicCholeskyRaw::Supernodal(sym) = symbolic.raw() {
+            let mut chol = analyse_forced(sym, threshold);
+            chol.factorize(SparseColMatRef::new(sym, &values)).unwrap();
+            let llt = chol.double_factor().unwrap();
+            if let SymbolicCholeskyRaw::Supernodal(sym) = llt.symbolic.raw() {
                 let tree = Subtrees::new(sym).expect("faer numbers supernodes in postorder");
                 let top = tree.roots[0];
                 assert!(
@@ -456,32 +448,9 @@ mod tests {
                         > 8 * PARALLEL_SUBTREE_VALUES
                 );
             }
-            let mut factor = vec![0.0; symbolic.len_val()];
-            let par = Par::Seq;
-            let mut mem = MemBuffer::new(
-                symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()),
-            );
-            symbolic
-                .factorize_numeric_llt(
-                    &mut factor,
-                    SparseColMatRef::new(sym, &values),
-                    Side::Lower,
-                    Default::default(),
-                    par,
-                    MemStack::new(&mut mem),
-                    Default::default(),
-                )
-                .unwrap();
             let b: Vec<f64> = (0..n).map(|k| (0.3 * k as f64).cos()).collect();
             let mut full = b.clone();
-            let mut mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
-            LltRef::new(&symbolic, &factor).solve_in_place_with_conj(
-                Conj::No,
-                MatMut::from_column_major_slice_mut(&mut full, n, 1),
-                par,
-                MemStack::new(&mut mem),
-            );
-            let llt = Llt::new(&symbolic, &factor);
+            chol.solve_in_place(&mut full);
             let halves = llt.backward(llt.forward(&b));
             for (a, e) in halves.iter().zip(&full) {
                 assert!((a - e).abs() < 1e-13 * e.abs().max(1.0), "{a} vs {e}");

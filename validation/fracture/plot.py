@@ -77,6 +77,24 @@ def plot_lefm():
     fig.savefig(os.path.join(HERE, "lefm.png"), dpi=120)
 
 
+def load_curve(path, per=1.0):
+    """Grip displacement [µm] and top reaction [kN] / `per` of a curve file."""
+    with open(path) as f:
+        curve = list(csv.DictReader(f))
+    return ([1e6 * float(c["displacement"]) for c in curve],
+            [1e-3 * float(c["reaction_top_y"]) / per for c in curve])
+
+
+def finish_curves(fig, ax, ylabel, name):
+    """Labels, legend and grid of a load-displacement figure; writes it as `name`."""
+    ax.set_xlabel("grip displacement [µm]")
+    ax.set_ylabel(ylabel)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, name), dpi=120)
+
+
 def plot_curves():
     fig, ax = plt.subplots(figsize=(6, 4))
     data = rows("strategies.csv")
@@ -86,20 +104,11 @@ def plot_curves():
         path = os.path.join(RESULTS, name) if name else None
         if not path or not os.path.exists(path):
             continue
-        with open(path) as f:
-            curve = list(csv.DictReader(f))
-        ax.plot([1e6 * float(c["displacement"]) for c in curve],
-                [1e-3 * float(c["reaction_top_y"]) for c in curve],
-                lw=0.8, color=f"C{k}", label=label)
+        ax.plot(*load_curve(path), lw=0.8, color=f"C{k}", label=label)
     a, p, d = lefm_path()
     ax.plot([1e6 * x for x in d], [1e-3 * x for x in p], "k--", lw=1.2,
             label="LEFM path (FEM, G$_0$), a/W = 0.2 … 0.9")
-    ax.set_xlabel("grip displacement [µm]")
-    ax.set_ylabel("reaction [kN per m thickness]")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "curves.png"), dpi=120)
+    finish_curves(fig, ax, "reaction [kN per m thickness]", "curves.png")
 
 
 def plot_damage():
@@ -216,21 +225,12 @@ def plot_three_d():
         path = os.path.join(RESULTS, name)
         if not os.path.exists(path):
             continue
-        with open(path) as f:
-            curve = list(csv.DictReader(f))
-        ax.plot([1e6 * float(c["displacement"]) for c in curve],
-                [1e-3 * float(c["reaction_top_y"]) / depth for c in curve],
-                lw=0.9, color=f"C{k}", label=label)
+        ax.plot(*load_curve(path, per=depth), lw=0.9, color=f"C{k}", label=label)
     for nu, style in (("nu_1/4", "k--"), ("nu_1/3", "k:")):
         p_c = [fem[t][nu]["P_c_per_depth"] for t in ("T_0.02", "T_0.04")]
         ax.axhline(1e-3 * sum(p_c) / 2, color="k", ls=style[1:], lw=1.0,
                    label=f"3D FEM critical load, ν = {nu[3:]} (T = 20-40 mm)")
-    ax.set_xlabel("grip displacement [µm]")
-    ax.set_ylabel("reaction per unit depth [kN/m]")
-    ax.legend(fontsize=7)
-    ax.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(HERE, "three_d.png"), dpi=120)
+    finish_curves(fig, ax, "reaction per unit depth [kN/m]", "three_d.png")
 
 
 if __name__ == "__main__":
