@@ -100,6 +100,7 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
         let reference_out = dir.join(format!("{name}_reference"));
         run(&reference_scene, &reference_out, None);
         let reference = displacements(&reference_out);
+        let reference_counts = summary(&reference_out)["counts"].clone();
         let max_u = reference
             .iter()
             .map(|u| u.iter().map(|v| v * v).sum::<f64>().sqrt())
@@ -127,6 +128,21 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
                 difference / max_u
             );
             assert_eq!(petsc["processes"], processes, "{name}: processes reported");
+            // Each process assembles its own columns and its ghosts': together
+            // they are the single-process K, entry for entry.
+            let counts = &s["counts"];
+            assert_eq!(
+                counts["nnz_k"], reference_counts["nnz_k"],
+                "{name} on {processes} process(es): stored entries of K"
+            );
+            let asymmetry = |c: &serde_json::Value| c["asymmetry"].as_f64().expect("asymmetry");
+            // The same squares summed in another order: the sums of N < 1e6
+            // positive terms agree to N ε ≈ 1e-10 relative.
+            let (a, b) = (asymmetry(counts), asymmetry(&reference_counts));
+            assert!(
+                (a - b).abs() <= 1e-10 * b.abs(),
+                "{name} on {processes} process(es): asymmetry {a:e} against {b:e}"
+            );
             if !(difference <= AGREEMENT * max_u) {
                 failures.push(format!(
                     "{name} on {processes} process(es): differs by {:.2e} of max|u|",
@@ -139,13 +155,8 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
-#[test]
-fn several_processes_refuse_a_route_that_would_solve_on_each() {
-    let dir = std::env::temp_dir().join(format!("dhpd-mpi-refuse-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let text = std::fs::read_to_string(scene_path("plate_hole")).unwrap();
-    let scene = dir.join("cholesky.toml");
-    std::fs::write(&scene, text.replace("\"petsc\"", "\"cholesky\"")).unwrap();
+/// `scene` run by `mpirun -np 2`: its exit status and standard error.
+fn run_on_two(scene: &Path, out: &Path) -> (bool, String) {
     let output = Command::new("mpirun")
         .args([
             "--allow-run-as-root",
@@ -154,16 +165,42 @@ fn several_processes_refuse_a_route_that_would_solve_on_each() {
             "none",
         ])
         .args(["-np", "2", env!("CARGO_BIN_EXE_dhpd"), "run"])
-        .arg(&scene)
+        .arg(scene)
         .arg("--out")
-        .arg(dir.join("out"))
+        .arg(out)
         .output()
         .expect("mpirun starts");
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    std::fs::remove_dir_all(&dir).ok();
-    assert!(!output.status.success());
+    let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
+    (output.status.success(), stderr)
+}
+
+#[test]
+fn several_processes_refuse_a_route_that_would_solve_on_each() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-refuse-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scene_path("plate_hole")).unwrap();
+    let scene = dir.join("cholesky.toml");
+    std::fs::write(&scene, text.replace("\"petsc\"", "\"cholesky\"")).unwrap();
+    let (success, stderr) = run_on_two(&scene, &dir.join("out"));
+    assert!(!success);
     assert!(
         stderr.contains("solver.method: this run has 2 processes"),
         "{stderr}"
     );
+    // No process holds all of K, so none can export it.
+    let scene = dir.join("export.toml");
+    std::fs::write(
+        &scene,
+        text.replace("vtu = false", "vtu = false\nmatrix_market = true"),
+    )
+    .unwrap();
+    let (success, stderr) = run_on_two(&scene, &dir.join("export"));
+    let written = dir.join("export").exists();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(!success);
+    assert!(
+        stderr.contains("output.matrix_market: this run has 2 processes"),
+        "{stderr}"
+    );
+    assert!(!written, "no half-written output");
 }

@@ -74,14 +74,61 @@ impl Pattern {
         coupling: Coupling,
         user_memory_limit: Option<f64>,
     ) -> Result<Self, NumericalError> {
-        let (row_offsets, row_points) = point_rows(disc, dofs.d, coupling, user_memory_limit)?;
-        let (col_ptr, row_idx) = dof_columns(dofs, &row_offsets, &row_points);
+        let charge = BYTES_PER_POINT_ENTRY + (dofs.d * dofs.d) as f64 * BYTES_PER_DOF_ENTRY;
+        let (row_offsets, row_points) =
+            point_rows(disc, dofs.d, coupling, user_memory_limit, charge)?;
+        let (col_ptr, row_idx) = dof_columns(dofs, &row_offsets, &row_points, None);
         Ok(Pattern {
             row_offsets,
             row_points,
             col_ptr,
             row_idx,
         })
+    }
+
+    /// The point level whole, the degree-of-freedom level only in the point
+    /// columns that `columns` flags, given the point level (a process of a
+    /// distributed solve assembles its own columns and those of its ghost
+    /// points): the other columns are empty, so [`Pattern::point_value_offsets`]
+    /// and the assembly skip them. The memory check charges the point level
+    /// and the flagged columns.
+    pub fn with_columns<E: From<NumericalError>>(
+        disc: &Discretization,
+        dofs: &DofMap,
+        coupling: Coupling,
+        user_memory_limit: Option<f64>,
+        columns: impl FnOnce(&Pattern) -> Result<Vec<bool>, E>,
+    ) -> Result<Self, E> {
+        let (row_offsets, row_points) = point_rows(
+            disc,
+            dofs.d,
+            coupling,
+            user_memory_limit,
+            BYTES_PER_POINT_ENTRY,
+        )?;
+        let mut pattern = Pattern {
+            row_offsets,
+            row_points,
+            col_ptr: Vec::new(),
+            row_idx: Vec::new(),
+        };
+        let keep = columns(&pattern)?;
+        let kept: usize = (0..keep.len())
+            .filter(|&q| keep[q])
+            .map(|q| pattern.rows(q).len())
+            .sum();
+        let d2 = (dofs.d * dofs.d) as f64;
+        check_memory(
+            || format!("this process's columns of the stiffness ({kept} coupled point pairs)"),
+            pattern.row_points.len() as f64 * BYTES_PER_POINT_ENTRY
+                + kept as f64 * d2 * BYTES_PER_DOF_ENTRY,
+            user_memory_limit,
+        )?;
+        let (col_ptr, row_idx) =
+            dof_columns(dofs, &pattern.row_offsets, &pattern.row_points, Some(&keep));
+        pattern.col_ptr = col_ptr;
+        pattern.row_idx = row_idx;
+        Ok(pattern)
     }
 
     /// Offsets into the value array of each point's block of columns.
@@ -105,11 +152,11 @@ fn point_rows(
     d: usize,
     coupling: Coupling,
     user_memory_limit: Option<f64>,
+    bytes_per_entry: f64,
 ) -> Result<(Vec<usize>, Vec<u32>), NumericalError> {
     let n = disc.points.len();
     let bonds = &disc.bonds;
     let family = |o: usize| bonds.neighbour[bonds.owned_by(o)].iter().copied();
-    let bytes_per_entry = BYTES_PER_POINT_ENTRY + (d * d) as f64 * BYTES_PER_DOF_ENTRY;
     let max_entries = memory_limit(user_memory_limit)
         .map_or(usize::MAX, |(limit, _)| (limit / bytes_per_entry) as usize);
     let found = AtomicUsize::new(0);
@@ -170,17 +217,21 @@ fn point_rows(
 
 /// The degree-of-freedom level (CSC column pointers and row indices): column
 /// point `q` has `free_count(q)` columns, each with `Σ_{p ∈ rows(q)}
-/// free_count(p)` rows.
+/// free_count(p)` rows (none outside the columns `keep` flags).
 fn dof_columns(
     dofs: &DofMap,
     row_offsets: &[usize],
     row_points: &[u32],
+    keep: Option<&[bool]>,
 ) -> (Vec<usize>, Vec<usize>) {
     let n = row_offsets.len() - 1;
     let free_count: Vec<usize> = (0..n).map(|i| dofs.free_count(i)).collect();
     let entries_per_column: Vec<usize> = (0..n)
         .into_par_iter()
         .map(|q| {
+            if keep.is_some_and(|k| !k[q]) {
+                return 0;
+            }
             row_points[row_offsets[q]..row_offsets[q + 1]]
                 .iter()
                 .map(|&p| free_count[p as usize])
@@ -202,6 +253,9 @@ fn dof_columns(
         .into_par_iter()
         .enumerate()
         .for_each(|(q, chunk)| {
+            if chunk.is_empty() {
+                return;
+            }
             let column: Vec<usize> = row_points[row_offsets[q]..row_offsets[q + 1]]
                 .iter()
                 .flat_map(|&p| (0..dofs.d).map(move |r| dofs.free_index[3 * p as usize + r]))

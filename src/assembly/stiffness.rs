@@ -98,7 +98,8 @@ impl Stiffness {
     /// stiffnesses underflowed; a mechanism leaves some component positive).
     /// Every input passed its checks, so this is a scale at which the model's
     /// own quantities leave double precision. `columns` (by point) restricts
-    /// the search to the point columns refilled since the last check.
+    /// the search to the point columns refilled since the last check; empty
+    /// columns (not assembled on this process) are skipped.
     pub fn out_of_range(
         &self,
         pattern: &Pattern,
@@ -108,7 +109,11 @@ impl Stiffness {
     ) -> Option<(usize, f64)> {
         let column = |c: usize| pattern.col_ptr[c]..pattern.col_ptr[c + 1];
         let point = |c: usize| dofs.free_dofs[c].0 as usize;
-        let in_scope = |c: usize| columns.is_none_or(|cols| cols[point(c)]);
+        // An empty column was not assembled here (a distributed solve's other
+        // processes hold it); an assembled one holds at least its diagonal.
+        let in_scope = |c: usize| {
+            !column(c).is_empty() && columns.is_none_or(|cols| cols[point(c)])
+        };
         if let Some((c, v)) = (0..self.n).filter(|&c| in_scope(c)).find_map(|c| {
             let v = self.values[column(c)].iter().find(|v| !v.is_finite())?;
             Some((c, *v))

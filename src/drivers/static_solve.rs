@@ -108,7 +108,7 @@ impl Counts {
             bonds: disc.bonds.len(),
             dofs: dofs.n_free(),
             prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
-            nnz_k: pipeline.pattern().nnz(),
+            nnz_k: pipeline.stored_entries(),
             solver: pipeline.method(),
             nnz_l: pipeline.nnz_factor(),
             ordering: pipeline.ordering,
@@ -204,14 +204,21 @@ fn solve_with(
     let t = Instant::now();
     let rhs = right_hand_side(model, &disc, &dofs, &f_ext, 1.0);
     timings.assembly += t.elapsed().as_secs_f64();
-    check_range(
+    let in_range = check_range(
         &system.stiffness,
         system.pipeline.pattern(),
         &dofs,
         &disc,
         None,
-    )?;
-    let asymmetry = system.pipeline.asymmetry(&system.stiffness);
+    );
+    // Each process of a distributed solve checks its own columns; all stop together.
+    #[cfg(feature = "mpi")]
+    let in_range = match scene.solver.method {
+        SolverMethod::Petsc => crate::solve::petsc::on_every_process(in_range),
+        _ => in_range,
+    };
+    in_range?;
+    let asymmetry = system.pipeline.asymmetry(&system.stiffness, &dofs)?;
     // The model's residual, from the bond forces (Pipeline::solve_with_residual).
     let model_residual = |x: &[f64]| -> Vec<f64> {
         let f_int = internal_forces(model, &disc, &dofs.expand(x), true);

@@ -18,6 +18,9 @@ use crate::error::Error;
 use crate::model::bond_based::BondBased;
 use crate::model::{AnyModel, Coupling, Model};
 use crate::notes::Notes;
+use crate::scene::solver::SolverSettings;
+#[cfg(feature = "mpi")]
+use crate::scene::SolverMethod;
 use crate::scene::{ModelKind, Scene};
 use crate::solve::pipeline::Pipeline;
 use crate::solve::route::{self, Hints};
@@ -54,7 +57,7 @@ impl System {
         route::check_size(settings, dofs.n_free())?;
         let t = Instant::now();
         let limit = settings.memory_limit_bytes;
-        let pattern = Pattern::new(disc, dofs, model.coupling(), limit)?;
+        let pattern = stiffness_pattern(settings, disc, dofs, model.coupling())?;
         let surrogate = route::wants_surrogate(settings, hints)
             .then(|| Pattern::new(disc, dofs, Coupling::Star, limit))
             .transpose()?;
@@ -91,6 +94,25 @@ impl System {
         };
         (&mut self.pipeline, matrices)
     }
+}
+
+/// The pattern of `K`: whole, or on the `petsc` route the columns this
+/// process assembles (`solve::petsc::assembled_columns`: its own points and
+/// their ghosts).
+fn stiffness_pattern(
+    settings: &SolverSettings,
+    disc: &Discretization,
+    dofs: &DofMap,
+    coupling: Coupling,
+) -> Result<Pattern, Error> {
+    let limit = settings.memory_limit_bytes;
+    #[cfg(feature = "mpi")]
+    if settings.method == SolverMethod::Petsc {
+        return Pattern::with_columns(disc, dofs, coupling, limit, |points| {
+            crate::solve::petsc::assembled_columns(points, dofs)
+        });
+    }
+    Ok(Pattern::new(disc, dofs, coupling, limit)?)
 }
 
 /// What the solver should know about `scene` besides its matrix: a symmetric

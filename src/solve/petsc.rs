@@ -2,17 +2,23 @@
 //! build with the `mpi` feature): a thin FFI over the functions used, owners
 //! of PETSc's objects that destroy them when dropped, and the solve.
 //!
-//! **What is distributed: the linear solve only.** Every process discretises
-//! and assembles the whole problem (replicated: the time and memory of those
-//! phases do not shrink with the number of processes), then hands PETSc only
-//! the rows it owns: a contiguous block of points in dhpd's point order,
-//! balanced by the stored entries of `K` of its rows (its bonds; neighbours of
-//! neighbours for the shear model). PETSc solves with CG (GMRES, preconditioned
-//! on the right, for a non-symmetric `K`) and algebraic multigrid (GAMG) given
-//! the rigid motions of the points as its near-null space, to a relative true
-//! residual `‖b − K x‖/‖b‖` of [`GMRES_TOLERANCE`]. The solution is gathered on
-//! every process ([`VecScatterCreateToAll`](ffi::VecScatterCreateToAll)), which
-//! then checks its residual with dhpd's own product, as for every route.
+//! **What is distributed: the assembly and the linear solve.** Every process
+//! reads the scene and discretises the whole body (replicated: points, bonds
+//! and the point-level pattern, a few KB per point), then takes a contiguous
+//! block of points in dhpd's point order ([`Numbering`], balanced by the stored
+//! entries of `K` in their rows) and assembles only the columns of `K` of its
+//! own points and of their ghost points, the points coupled to them (within
+//! a horizon for the bond-based model, two for the shear model, whose bonds
+//! couple neighbours of neighbours: [`assembled_columns`]). Its rows of `K`,
+//! gathered from those columns, go to PETSc, which solves with CG (GMRES,
+//! preconditioned on the right, for a non-symmetric `K`) and algebraic
+//! multigrid (GAMG) given the rigid motions of the points as its near-null
+//! space, to a relative true residual `‖b − K x‖/‖b‖` of [`GMRES_TOLERANCE`],
+//! checked afterwards with PETSc's product on those rows. The solution is
+//! gathered on every process
+//! ([`VecScatterCreateToAll`](ffi::VecScatterCreateToAll)). A check that one
+//! process fails ([`on_every_process`]) stops all of them, so that none goes
+//! on alone into PETSc's collective calls.
 //!
 //! **Unknowns.** PETSc's rows are `d` per point with a free component (block
 //! size `d`, as GAMG's rigid-motion near-null space needs). A prescribed
@@ -37,7 +43,7 @@
 
 use super::pipeline::{GMRES_RESTART, ITERATIVE_BUDGET};
 use super::{Layout, GMRES_TOLERANCE};
-use crate::assembly::dofs::PRESCRIBED;
+use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 use crate::error::{Error, InputError, NumericalError};
 use serde::Serialize;
@@ -83,6 +89,8 @@ mod ffi {
     pub const KSP_NORM_UNPRECONDITIONED: c_int = 2;
     /// `PCSide::PC_RIGHT`.
     pub const PC_RIGHT: c_int = 1;
+    /// `NormType::NORM_2`.
+    pub const NORM_2: c_int = 1;
     /// `PETSC_DEFAULT` (a tolerance left at PETSc's default).
     pub const PETSC_DEFAULT: PetscReal = -2.0;
 
@@ -91,8 +99,21 @@ mod ffi {
         /// Indexed by `KSPConvergedReason`, negative values included.
         pub static KSPConvergedReasons: *const *const c_char;
 
+        /// Open MPI's predefined handles (`MPI_DOUBLE` and `MPI_SUM` are
+        /// their addresses).
+        pub static ompi_mpi_double: Opaque;
+        pub static ompi_mpi_op_sum: Opaque;
+
         pub fn MPI_Comm_rank(comm: MPI_Comm, rank: *mut c_int) -> c_int;
         pub fn MPI_Comm_size(comm: MPI_Comm, size: *mut c_int) -> c_int;
+        pub fn MPI_Allreduce(
+            send: *const c_void,
+            receive: *mut c_void,
+            count: c_int,
+            datatype: *const Opaque,
+            op: *const Opaque,
+            comm: MPI_Comm,
+        ) -> c_int;
 
         pub fn PetscInitialize(
             argc: *mut c_int,
@@ -133,6 +154,7 @@ mod ffi {
         pub fn MatCreateVecs(mat: Mat, right: *mut Vec, left: *mut Vec) -> PetscErrorCode;
         pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
         pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
+        pub fn MatMult(mat: Mat, x: Vec, y: Vec) -> PetscErrorCode;
         pub fn MatNullSpaceCreateRigidBody(
             coords: Vec,
             space: *mut MatNullSpace,
@@ -144,6 +166,9 @@ mod ffi {
         pub fn VecGetArrayRead(v: Vec, a: *mut *const PetscScalar) -> PetscErrorCode;
         pub fn VecRestoreArrayRead(v: Vec, a: *mut *const PetscScalar) -> PetscErrorCode;
         pub fn VecDestroy(v: *mut Vec) -> PetscErrorCode;
+        pub fn VecDuplicate(v: Vec, copy: *mut Vec) -> PetscErrorCode;
+        pub fn VecAYPX(y: Vec, beta: PetscScalar, x: Vec) -> PetscErrorCode;
+        pub fn VecNorm(x: Vec, kind: c_int, value: *mut PetscReal) -> PetscErrorCode;
         pub fn VecScatterCreateToAll(
             v: Vec,
             scatter: *mut VecScatter,
@@ -311,6 +336,110 @@ fn initialized() -> Result<bool, Error> {
     Ok(flag != 0)
 }
 
+/// The sum of `value` over every process (`MPI_Allreduce`; a collective
+/// call). On a process where PETSc is not initialised (a library caller's
+/// single process), `value` itself.
+pub(crate) fn sum_over_processes(value: f64) -> f64 {
+    if !initialized().unwrap_or(false) {
+        return value;
+    }
+    let mut sum = value;
+    // SAFETY: MPI is initialised; one double in, one out; MPI's default error
+    // handler aborts the run instead of returning an error code.
+    unsafe {
+        ffi::MPI_Allreduce(
+            (&raw const value).cast(),
+            (&raw mut sum).cast(),
+            1,
+            &raw const ffi::ompi_mpi_double,
+            &raw const ffi::ompi_mpi_op_sum,
+            ffi::PETSC_COMM_WORLD,
+        );
+    }
+    sum
+}
+
+/// `result` on every process when every process has `Ok`; otherwise this
+/// process's error, or on a process that had none an error naming how many
+/// failed (a collective call: a process must not go on alone into PETSc's
+/// collective calls while another stops).
+pub(crate) fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
+    let failed = sum_over_processes(f64::from(u8::from(result.is_err())));
+    match result {
+        Ok(_) if failed > 0.0 => Err(NumericalError::Solver(format!(
+            "{failed} other process(es) of this MPI run stopped with an error (printed by \
+             their rank)"
+        ))
+        .into()),
+        result => result,
+    }
+}
+
+/// The point columns of `K` this process assembles (`pattern`: the point
+/// level): those of its own points ([`Numbering`]) and of every point coupled
+/// to them (its ghost points: within a horizon for the bond-based model, two
+/// for the shear model), whose columns hold the rest of its own rows.
+pub(crate) fn assembled_columns(pattern: &Pattern, dofs: &DofMap) -> Result<Vec<bool>, Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    let numbering = Numbering::new(pattern, dofs, processes)?;
+    let mut keep = vec![false; pattern.row_offsets.len() - 1];
+    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
+        pattern.rows(q).iter().for_each(|&p| keep[p as usize] = true);
+    }
+    Ok(keep)
+}
+
+/// `‖K − Kᵀ‖_F / ‖K‖_F` of a distributed `K` (`values` on this process's
+/// columns, [`assembled_columns`]): each process sums over its own columns,
+/// whose transposed entries lie in its ghost columns (a collective call).
+pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], dofs: &DofMap) -> Result<f64, Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    let numbering = Numbering::new(pattern, dofs, processes)?;
+    let (mut skew, mut total) = (0.0, 0.0);
+    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
+        for c in 0..dofs.d {
+            let k = dofs.free_index[3 * q + c];
+            if k == PRESCRIBED {
+                continue;
+            }
+            let k = k as usize;
+            for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
+                let r = pattern.row_idx[p];
+                let column = &pattern.row_idx[pattern.col_ptr[r]..pattern.col_ptr[r + 1]];
+                let transposed = column
+                    .binary_search(&k)
+                    .map(|t| values[pattern.col_ptr[r] + t])
+                    .expect("a ghost column holds the transposed entry");
+                skew += (values[p] - transposed).powi(2);
+                total += values[p] * values[p];
+            }
+        }
+    }
+    let (skew, total) = (sum_over_processes(skew), sum_over_processes(total));
+    Ok(if total > 0.0 { (skew / total).sqrt() } else { 0.0 })
+}
+
+/// An error unless PETSc is initialised.
+fn ensure_initialized() -> Result<(), Error> {
+    if initialized()? {
+        return Ok(());
+    }
+    Err(NumericalError::Solver(
+        "solver.method = \"petsc\" needs PETSc initialised (dhpd's command line in a \
+         build with the mpi feature does it; a library caller holds a dhpd::mpi::Petsc)"
+            .into(),
+    )
+    .into())
+}
+
 /// What a PETSc solve used and did (`summary.json`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
 pub struct PetscReport {
@@ -380,7 +509,7 @@ pub(super) struct Solver {
     krylov: Krylov,
     x: Vector,
     b: Vector,
-    _matrix: Matrix,
+    matrix: Matrix,
     /// PETSc's rows in all.
     global_rows: usize,
     /// PETSc's row of every free unknown of dhpd.
@@ -388,39 +517,32 @@ pub(super) struct Solver {
     /// The free unknown of each of this process's rows (`PRESCRIBED`: an
     /// identity row).
     owned: Vec<u32>,
+    /// The stored entries of `K` on all processes (identity rows left out).
+    pub(super) stored_entries: usize,
     processes: usize,
     /// The last solve's report.
     pub(super) report: Option<PetscReport>,
 }
 
 impl Solver {
-    /// Hands this process's rows of `K` (`values` on `pattern`; `transpose`:
-    /// the transposed position of every entry when `K` is not symmetric,
-    /// PETSc wanting rows where dhpd stores columns) to PETSc, and sets up
-    /// CG (GMRES if not `symmetric`) with GAMG and the rigid motions of the
-    /// points of `layout`.
+    /// Hands this process's rows of `K` (`values` on `pattern`, which holds
+    /// at least the [`assembled_columns`]: PETSc wants rows where dhpd stores
+    /// columns) to PETSc, and sets up CG (GMRES if not `symmetric`) with GAMG
+    /// and the rigid motions of the points of `layout`.
     pub(super) fn new(
         pattern: &Pattern,
         values: &[f64],
-        transpose: Option<&[usize]>,
         layout: Layout,
         symmetric: bool,
     ) -> Result<Self, Error> {
-        if !initialized()? {
-            return Err(NumericalError::Solver(
-                "solver.method = \"petsc\" needs PETSc initialised (dhpd's command line in a \
-                 build with the mpi feature does it; a library caller holds a dhpd::mpi::Petsc)"
-                    .into(),
-            )
-            .into());
-        }
+        ensure_initialized()?;
         // SAFETY: PETSc is initialised, so this global is set.
         let comm = unsafe { ffi::PETSC_COMM_WORLD };
         let (rank, processes) = (
             comm_query(ffi::MPI_Comm_rank),
             comm_query(ffi::MPI_Comm_size),
         );
-        let numbering = Numbering::new(pattern, layout, processes)?;
+        let numbering = Numbering::new(pattern, layout.dofs, processes)?;
         let d = layout.d();
         let (first, last) = (
             numbering.bounds[rank] * d,
@@ -431,7 +553,15 @@ impl Solver {
             columns,
             values: entries,
             owned,
-        } = local_rows(pattern, values, transpose, layout, &numbering, first..last)?;
+            stored,
+        } = on_every_process(local_rows(
+            pattern,
+            values,
+            layout,
+            &numbering,
+            first..last,
+        ))?;
+        let stored_entries = sum_over_processes(stored as f64) as usize;
         let n_local = petsc_int(last - first, "rows")?;
         let n_global = petsc_int(numbering.points.len() * d, "rows")?;
         let mut matrix = Matrix(null_mut());
@@ -483,18 +613,22 @@ impl Solver {
             krylov,
             x,
             b,
-            _matrix: matrix,
+            matrix,
             global_rows: numbering.points.len() * d,
             rows: numbering.rows,
             owned,
+            stored_entries,
             processes,
             report: None,
         })
     }
 
     /// Solves `K x = rhs` (every process passes the whole `rhs` and receives
-    /// the whole `x`); an error when PETSc's Krylov method did not converge.
-    pub(super) fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<usize, Error> {
+    /// the whole `x`); the iterations and the relative residual
+    /// `‖b − K x‖/‖b‖` of PETSc's rows (its product with the rows dhpd
+    /// assembled: no process holds all of `K`); an error when PETSc's Krylov
+    /// method did not converge.
+    pub(super) fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<(usize, f64), Error> {
         let owned = &self.owned;
         let value = |r: usize| match owned[r] {
             PRESCRIBED => 0.0,
@@ -516,9 +650,28 @@ impl Solver {
             ))
             .into());
         }
+        let residual = self.residual()?;
         self.gather(x)?;
         self.report = Some(report);
-        Ok(iterations as usize)
+        Ok((iterations as usize, residual))
+    }
+
+    /// `‖b − K x‖/‖b‖` of the last solve, with PETSc's product.
+    fn residual(&self) -> Result<f64, Error> {
+        let mut r = Vector(null_mut());
+        call!(VecDuplicate(self.b.0, &mut r.0))?;
+        call!(MatMult(self.matrix.0, self.x.0, r.0))?;
+        call!(VecAYPX(r.0, -1.0, self.b.0))?;
+        let (mut norm_r, mut norm_b) = (0.0, 0.0);
+        call!(VecNorm(r.0, ffi::NORM_2, &mut norm_r))?;
+        call!(VecNorm(self.b.0, ffi::NORM_2, &mut norm_b))?;
+        Ok(if norm_b > 0.0 {
+            norm_r / norm_b
+        } else if norm_r == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY
+        })
     }
 
     /// The whole solution on every process, in dhpd's unknowns.
@@ -591,9 +744,10 @@ struct Numbering {
 }
 
 impl Numbering {
-    fn new(pattern: &Pattern, layout: Layout, processes: usize) -> Result<Self, Error> {
-        let dofs = layout.dofs;
-        let d = layout.d();
+    /// The numbering of `dofs` split over `processes` (`pattern`: its point
+    /// level is enough, so that a process knows its points before it assembles).
+    fn new(pattern: &Pattern, dofs: &DofMap, processes: usize) -> Result<Self, Error> {
+        let d = dofs.d;
         let mut points: Vec<usize> = Vec::new();
         let mut rows = Vec::with_capacity(dofs.free_dofs.len());
         for &(i, c) in &dofs.free_dofs {
@@ -604,12 +758,18 @@ impl Numbering {
             rows.push(petsc_int((points.len() - 1) * d + c as usize, "rows")?);
         }
         petsc_int(points.len() * d, "rows")?;
-        // Balance by stored entries of K (an identity row counts one).
+        // Balance by stored entries of K (an identity row counts one): a free
+        // component's row has the free components of the points coupled to it.
         let weight = |i: usize| -> usize {
+            let row: usize = pattern
+                .rows(i)
+                .iter()
+                .map(|&p| dofs.free_count(p as usize))
+                .sum();
             (0..d)
                 .map(|c| match dofs.free_index[3 * i + c] {
                     PRESCRIBED => 1,
-                    k => pattern.col_ptr[k as usize + 1] - pattern.col_ptr[k as usize],
+                    _ => row,
                 })
                 .sum()
         };
@@ -639,51 +799,93 @@ struct LocalRows {
     values: Vec<f64>,
     /// The free unknown of each row (`PRESCRIBED`: an identity row).
     owned: Vec<u32>,
+    /// Entries of `K` among them (identity rows left out).
+    stored: usize,
 }
 
 /// PETSc's rows `range` of `K` (module docs: identity rows for prescribed
-/// components, scaled by the mean diagonal).
+/// components, scaled by the mean diagonal over all processes), gathered from
+/// the columns this process assembled: row `k` of `K` has an entry in the
+/// column of every unknown coupled to `k` (the pattern is structurally
+/// symmetric), and the columns, walked in order, give each row its entries in
+/// PETSc's column order (which follows dhpd's).
 fn local_rows(
     pattern: &Pattern,
     values: &[f64],
-    transpose: Option<&[usize]>,
     layout: Layout,
     numbering: &Numbering,
     range: std::ops::Range<usize>,
 ) -> Result<LocalRows, Error> {
     let d = layout.d();
     let free_index = &layout.dofs.free_index;
-    let diagonal = |k: usize| {
-        let rows = &pattern.row_idx[pattern.col_ptr[k]..pattern.col_ptr[k + 1]];
-        rows.binary_search(&k)
-            .map_or(0.0, |p| values[pattern.col_ptr[k] + p].abs())
+    let owned: Vec<u32> = range
+        .clone()
+        .map(|row| free_index[3 * numbering.points[row / d] + row % d])
+        .collect();
+    let length = |k: u32| match k {
+        PRESCRIBED => 1,
+        k => pattern.col_ptr[k as usize + 1] - pattern.col_ptr[k as usize],
     };
-    let n = numbering.rows.len();
-    let identity = (0..n).map(diagonal).sum::<f64>() / n.max(1) as f64;
-    let mut local = LocalRows {
-        offsets: vec![0],
-        columns: Vec::new(),
-        values: Vec::new(),
-        owned: Vec::with_capacity(range.len()),
-    };
-    for row in range {
-        let (point, c) = (numbering.points[row / d], row % d);
-        let k = free_index[3 * point + c];
-        local.owned.push(k);
-        if k == PRESCRIBED {
-            local.columns.push(petsc_int(row, "rows")?);
-            local.values.push(identity);
-        } else {
-            // Row k of K is column k of Kᵀ: the pattern is symmetric.
-            let k = k as usize;
-            for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
-                local.columns.push(numbering.rows[pattern.row_idx[p]]);
-                local.values.push(values[transpose.map_or(p, |t| t[p])]);
-            }
-        }
-        local
-            .offsets
-            .push(petsc_int(local.columns.len(), "entries on one process")?);
+    let mut offsets = Vec::with_capacity(owned.len() + 1);
+    offsets.push(0usize);
+    for &k in &owned {
+        offsets.push(offsets.last().expect("started") + length(k));
     }
-    Ok(local)
+    let entries = *offsets.last().expect("started");
+    let stored = entries - owned.iter().filter(|&&k| k == PRESCRIBED).count();
+    let mut columns = vec![0 as PetscInt; entries];
+    let mut local_values = vec![0.0; entries];
+    // The next free slot of each row, and the local row of each owned unknown.
+    let mut next = offsets.clone();
+    let mut local_row = vec![u32::MAX; numbering.rows.len()];
+    let (mut diagonal, mut free_rows) = (0.0, 0usize);
+    for (r, &k) in owned.iter().enumerate() {
+        if k == PRESCRIBED {
+            // In range: `Numbering::new` checked the rows' count.
+            columns[offsets[r]] = (range.start + r) as PetscInt;
+        } else {
+            local_row[k as usize] = r as u32;
+            free_rows += 1;
+        }
+    }
+    for column in 0..pattern.col_ptr.len() - 1 {
+        let petsc_column = numbering.rows[column];
+        for p in pattern.col_ptr[column]..pattern.col_ptr[column + 1] {
+            let row = pattern.row_idx[p];
+            let r = local_row[row] as usize;
+            if r == u32::MAX as usize {
+                continue;
+            }
+            if row == column {
+                diagonal += values[p].abs();
+            }
+            columns[next[r]] = petsc_column;
+            local_values[next[r]] = values[p];
+            next[r] += 1;
+        }
+    }
+    let identity =
+        sum_over_processes(diagonal) / sum_over_processes(free_rows as f64).max(1.0);
+    for (r, &k) in owned.iter().enumerate() {
+        if k == PRESCRIBED {
+            local_values[offsets[r]] = identity;
+        } else if next[r] != offsets[r + 1] {
+            return Err(NumericalError::Solver(format!(
+                "row {} of K is incomplete on this process: its ghost columns are missing \
+                 (a defect of the partition)",
+                range.start + r
+            ))
+            .into());
+        }
+    }
+    Ok(LocalRows {
+        offsets: offsets
+            .iter()
+            .map(|&o| petsc_int(o, "entries on one process"))
+            .collect::<Result<_, _>>()?,
+        columns,
+        values: local_values,
+        owned,
+        stored,
+    })
 }

@@ -42,6 +42,7 @@ use super::refine::{refine, refine_extended};
 use super::route::{self, Factor, Hints, OrderingReport, Source, LU_MAX_UNKNOWNS};
 use super::two_level::TwoLevel;
 use super::{norm2, relative_residual, Layout, Matrices, GMRES_TOLERANCE};
+use crate::assembly::dofs::DofMap;
 use crate::assembly::pattern::Pattern;
 use crate::assembly::stiffness::Stiffness;
 use crate::error::{Error, NumericalError};
@@ -311,9 +312,25 @@ impl Pipeline {
         }
     }
 
-    /// `‖K − Kᵀ‖_F / ‖K‖_F`.
-    pub fn asymmetry(&mut self, k: &Stiffness) -> f64 {
-        k.asymmetry(self.transpose())
+    /// `‖K − Kᵀ‖_F / ‖K‖_F` (a collective call on the `petsc` route).
+    #[cfg_attr(not(feature = "mpi"), allow(unused_variables))]
+    pub fn asymmetry(&mut self, k: &Stiffness, dofs: &DofMap) -> Result<f64, Error> {
+        #[cfg(feature = "mpi")]
+        if self.source == Source::Petsc {
+            // Each process holds its own columns and its ghosts' only.
+            return super::petsc::asymmetry(&self.pattern, &k.values, dofs);
+        }
+        Ok(k.asymmetry(self.transpose()))
+    }
+
+    /// The stored entries of `K` (on all processes, for the `petsc` route,
+    /// whose pattern here holds this process's columns only).
+    pub fn stored_entries(&self) -> usize {
+        #[cfg(feature = "mpi")]
+        if let Factor::Petsc(Some(solver)) = &self.factor {
+            return solver.stored_entries;
+        }
+        self.pattern.nnz()
     }
 
     fn transpose(&mut self) -> &[usize] {
@@ -342,17 +359,8 @@ impl Pipeline {
         if self.source == Source::Petsc {
             // The old set-up goes before the new one is built.
             self.factor = Factor::Petsc(None);
-            if !self.symmetric {
-                self.transpose();
-            }
-            let transpose = self.transpose.as_deref().filter(|_| !self.symmetric);
-            let solver = super::petsc::Solver::new(
-                &self.pattern,
-                &m.k.values,
-                transpose,
-                layout,
-                self.symmetric,
-            )?;
+            let solver =
+                super::petsc::Solver::new(&self.pattern, &m.k.values, layout, self.symmetric)?;
             self.factor = Factor::Petsc(Some(solver));
             self.factored = true;
             return Ok(());
@@ -548,24 +556,24 @@ impl Pipeline {
             Source::Matrix => Ok(self.solve_direct(m.k, rhs, x, exact_residual, notes)),
             Source::TwoLevel if self.symmetric => self.solve_two_level(m.k, rhs, x),
             #[cfg(feature = "mpi")]
-            Source::Petsc => self.solve_petsc(m.k, rhs, x),
+            Source::Petsc => self.solve_petsc(rhs, x),
             _ => self.solve_krylov(layout, m, rhs, x, notes),
         }
     }
 
-    /// PETSc's solve (`solve::petsc`), its residual checked with dhpd's product.
+    /// PETSc's solve (`solve::petsc`), its residual checked with PETSc's
+    /// product on the rows dhpd assembled (no process holds all of `K`).
     #[cfg(feature = "mpi")]
-    fn solve_petsc(&mut self, k: &Stiffness, rhs: &[f64], x: &mut [f64]) -> Result<Fresh, Error> {
+    fn solve_petsc(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<Fresh, Error> {
         let Factor::Petsc(Some(solver)) = &mut self.factor else {
             unreachable!("set up by factorize")
         };
         let t = Instant::now();
-        let iterations = solver.solve(rhs, x)?;
+        let (iterations, residual) = solver.solve(rhs, x)?;
         // Measured here: the pipeline's own measure applies dhpd's factors.
         self.costs.iteration_seconds =
             (t.elapsed().as_secs_f64() / iterations.max(1) as f64).max(f64::MIN_POSITIVE);
         self.costs.fresh_iterations = iterations;
-        let residual = relative_residual(&self.product(k, x), rhs);
         Ok(Fresh {
             residual,
             refinement_steps: 0,

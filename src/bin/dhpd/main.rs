@@ -180,6 +180,17 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
         )
         .into());
     }
+    if world.size() > 1 && scene.output.matrix_market {
+        return Err(InputError::new(
+            "output.matrix_market",
+            format!(
+                "this run has {} processes, each of which assembles only its own columns of K; \
+                 export the matrix from a run on one process",
+                world.size()
+            ),
+        )
+        .into());
+    }
     if world.rank() > 0 {
         return dhpd::run(scene, &mut ());
     }
