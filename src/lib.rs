@@ -95,11 +95,14 @@ pub mod validation;
 /// MPI runs through PETSc (the `mpi` feature): hold a [`mpi::Petsc`] (PETSc
 /// and MPI initialised for its life) and scenes with `solver.method =
 /// "petsc"` solve on every process of the run (`mpirun -np N`). Each process
-/// discretises and assembles the whole body; PETSc distributes the linear
-/// solve; every process receives the whole solution.
+/// discretises the whole body and assembles its own columns of `K` (and its
+/// ghost points'); PETSc distributes the linear solve; every process receives
+/// the whole solution. [`mpi::share_path`] and [`mpi::on_every_process`] let
+/// the processes write one results directory together
+/// ([`output::Results::in_pieces`]).
 #[cfg(feature = "mpi")]
 pub mod mpi {
-    pub use crate::solve::petsc::{Petsc, PetscReport};
+    pub use crate::solve::petsc::{on_every_process, share_path, Petsc, PetscReport};
 }
 
 pub use drivers::{check, run, Observer, Progress, Snapshot, Solution};

@@ -155,6 +155,63 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The values of the ASCII data array `name` in the VTU text `vtu`.
+fn vtu_array(vtu: &str, name: &str) -> Vec<f64> {
+    let start = vtu
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("array {name}"));
+    let body = &vtu[start..];
+    let body = &body[body.find('>').expect("tag") + 1..body.find("</DataArray>").expect("end")];
+    body.split_whitespace()
+        .map(|v| v.parse().expect("a number"))
+        .collect()
+}
+
+#[test]
+fn every_process_writes_its_piece_of_the_parallel_vtk_file() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-pvtu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(scene_path("plate_hole")).unwrap();
+    let scene = dir.join("plate_hole.toml");
+    std::fs::write(&scene, text.replace("vtu = false", "vtu = true")).unwrap();
+    let one = dir.join("one");
+    run(&scene, &one, Some(1));
+    let three = dir.join("three");
+    run(&scene, &three, Some(3));
+    let read = |path: &Path| std::fs::read_to_string(path).unwrap_or_default();
+    let whole = read(&one.join("points.vtu"));
+    let parallel = read(&three.join("points.pvtu"));
+    let single_written_too = three.join("points.vtu").exists();
+    let pieces: Vec<String> = (0..3)
+        .map(|k| read(&three.join(format!("points_{k}.vtu"))))
+        .collect();
+    std::fs::remove_dir_all(&dir).ok();
+    assert!(!single_written_too, "points.pvtu replaces points.vtu");
+    for k in 0..3 {
+        assert!(
+            parallel.contains(&format!("<Piece Source=\"points_{k}.vtu\"/>")),
+            "{parallel}"
+        );
+    }
+    assert!(parallel.contains("Name=\"displacement\" NumberOfComponents=\"3\""));
+    // The pieces, in order, are the single-process file's points and values.
+    for name in ["points", "displacement", "volume", "bond_count"] {
+        let expected = vtu_array(&whole, name);
+        let joined: Vec<f64> = pieces.iter().flat_map(|p| vtu_array(p, name)).collect();
+        assert_eq!(joined.len(), expected.len(), "{name}: every point once");
+        let scale = expected.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let difference = joined
+            .iter()
+            .zip(&expected)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+        assert!(
+            difference <= AGREEMENT * scale,
+            "{name}: pieces differ by {difference:e} (scale {scale:e})"
+        );
+    }
+    assert!(pieces.iter().all(|p| !vtu_array(p, "volume").is_empty()));
+}
+
 /// `scene` run by `mpirun -np 2`: its exit status and standard error.
 fn run_on_two(scene: &Path, out: &Path) -> (bool, String) {
     let output = Command::new("mpirun")

@@ -164,7 +164,7 @@ pub(crate) fn write(
         profiles: plan.profiles.clone(),
         probes: Vec::new(),
     };
-    super::write_points(tmp, scene, &point_plan, &data)?;
+    super::write_points(tmp, scene, &point_plan, &data, 1)?;
     write_history(&tmp.join("history.csv"), solution)?;
     if !plan.probes.is_empty() {
         write_probes(&tmp.join("probes.csv"), solution, plan)?;

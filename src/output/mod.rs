@@ -24,6 +24,8 @@ use std::path::{Path, PathBuf};
 pub struct Results {
     staging: Staging,
     series: Series,
+    /// Pieces of the points' VTK file (the processes of an MPI run).
+    vtu_pieces: usize,
 }
 
 impl Results {
@@ -34,7 +36,24 @@ impl Results {
         check_output_dir(dir)?;
         let staging = Staging::new(dir, notes)?;
         let series = Series::new(staging.path());
-        Ok(Self { staging, series })
+        Ok(Self {
+            staging,
+            series,
+            vtu_pieces: 1,
+        })
+    }
+
+    /// Results of a static run on `processes` MPI processes: `points.pvtu`
+    /// with one piece per process; this process writes the first, the others
+    /// theirs with [`write_vtu_piece`] into [`Results::staging_path`].
+    pub fn in_pieces(mut self, processes: usize) -> Self {
+        self.vtu_pieces = processes.max(1);
+        self
+    }
+
+    /// The directory that receives the files until they are complete.
+    pub fn staging_path(&self) -> &Path {
+        self.staging.path()
     }
 
     /// Writes every requested output of `solution` into the staging
@@ -45,15 +64,45 @@ impl Results {
         solution: &Solution,
         total_seconds: f64,
     ) -> Result<(), Error> {
+        self.finish_joined(scene, solution, total_seconds, |written| written)
+    }
+
+    /// [`Results::finish`], with what this process wrote handed to `join`
+    /// before the commit (an MPI run: every process's pieces written, or the
+    /// run stops without a result).
+    pub fn finish_joined(
+        self,
+        scene: &Scene,
+        solution: &Solution,
+        total_seconds: f64,
+        join: impl FnOnce(Result<(), Error>) -> Result<(), Error>,
+    ) -> Result<(), Error> {
         let tmp = self.staging.path();
-        match solution {
-            Solution::Static(s) => write_static(tmp, scene, s, total_seconds)?,
-            Solution::QuasiStatic(s) => write_quasi_static(tmp, scene, s, total_seconds)?,
-            Solution::Dynamics(s) => dynamics::write(tmp, scene, s, total_seconds)?,
-        }
+        let written = match solution {
+            Solution::Static(s) => write_static(tmp, scene, s, total_seconds, self.vtu_pieces),
+            Solution::QuasiStatic(s) => write_quasi_static(tmp, scene, s, total_seconds),
+            Solution::Dynamics(s) => dynamics::write(tmp, scene, s, total_seconds),
+        };
+        join(written)?;
         self.series.finish()?;
         self.staging.commit()
     }
+}
+
+/// Writes this process's piece `piece` of `pieces` of a static run's
+/// `points.pvtu` into `dir` (rank 0's [`Results::staging_path`]), when the
+/// scene asks for VTK output.
+pub fn write_vtu_piece(
+    dir: &Path,
+    scene: &Scene,
+    solution: &StaticSolution,
+    piece: usize,
+    pieces: usize,
+) -> Result<(), Error> {
+    if !scene.output.vtu {
+        return Ok(());
+    }
+    points::write_vtu_piece(dir, &solution.point_data(), piece, pieces)
 }
 
 impl Observer for Results {
@@ -163,8 +212,10 @@ fn write_static(
     scene: &Scene,
     solution: &StaticSolution,
     total_seconds: f64,
+    vtu_pieces: usize,
 ) -> Result<(), Error> {
-    write_points(tmp, scene, &solution.plan, &solution.point_data())?;
+    let data = solution.point_data();
+    write_points(tmp, scene, &solution.plan, &data, vtu_pieces)?;
     if scene.output.matrix_market {
         matrix_market::write(tmp, &solution.system)?;
     }
@@ -185,7 +236,7 @@ fn write_quasi_static(
         stress: None,
         damage: Some(&solution.damage),
     };
-    write_points(tmp, scene, &solution.plan, &data)?;
+    write_points(tmp, scene, &solution.plan, &data, 1)?;
     csv::write_load_displacement(&tmp.join("load_displacement.csv"), solution)?;
     summary::write_quasi_static(&tmp.join("summary.json"), scene, solution, total_seconds)
 }

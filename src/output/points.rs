@@ -89,15 +89,23 @@ impl StaticSolution {
     }
 }
 
-/// Writes the point files, profiles and probes of one state into `dir`.
+/// Writes the point files, profiles and probes of one state into `dir`;
+/// with several `vtu_pieces` (the processes of an MPI run), `points.pvtu`
+/// and the first piece instead of `points.vtu` ([`write_vtu_piece`] writes
+/// the others).
 pub(crate) fn write_points(
     dir: &Path,
     scene: &Scene,
     plan: &Plan,
     data: &PointData,
+    vtu_pieces: usize,
 ) -> Result<(), Error> {
     data.ensure_finite(dir)?;
-    if scene.output.vtu {
+    if scene.output.vtu && vtu_pieces > 1 {
+        let names: Vec<String> = (0..vtu_pieces).map(piece_name).collect();
+        vtu::write_parallel(&dir.join("points.pvtu"), data, &names)?;
+        write_vtu_piece(dir, data, 0, vtu_pieces)?;
+    } else if scene.output.vtu {
         vtu::write(&dir.join("points.vtu"), data)?;
     }
     if scene.output.points_csv {
@@ -112,3 +120,20 @@ pub(crate) fn write_points(
     Ok(())
 }
 
+
+/// The file of piece `piece` of `points.pvtu`.
+fn piece_name(piece: usize) -> String {
+    format!("points_{piece}.vtu")
+}
+
+/// Writes piece `piece` of `pieces` of `points.pvtu` into `dir` (its share of
+/// the point order, [`vtu::piece_range`]).
+pub(crate) fn write_vtu_piece(
+    dir: &Path,
+    data: &PointData,
+    piece: usize,
+    pieces: usize,
+) -> Result<(), Error> {
+    let range = vtu::piece_range(data.disc.points.len(), piece, pieces);
+    vtu::write_piece(&dir.join(piece_name(piece)), data, range)
+}

@@ -11,6 +11,7 @@
 use super::PointData;
 use crate::error::Error;
 use std::fmt::Write;
+use std::ops::Range;
 use std::path::Path;
 
 /// Files with at least this many points are written in binary.
@@ -121,59 +122,123 @@ fn vectors(v: &[[f64; 3]]) -> Values {
     Values::F64(v.iter().flatten().copied().collect())
 }
 
+/// One data array of the points: name, components per point, values.
+struct Array {
+    name: &'static str,
+    components: usize,
+    values: Values,
+}
+
+/// The point-data arrays of the points `range` (every writer of a file or
+/// a piece, and the parallel header, list the same arrays).
+fn point_arrays(s: &PointData, range: Range<usize>) -> Vec<Array> {
+    let p = &s.disc.points;
+    let array = |name, components, values| Array {
+        name,
+        components,
+        values,
+    };
+    let r = range.clone();
+    let mut arrays = vec![array("displacement", 3, vectors(&s.u[r.clone()]))];
+    if let Some(v) = s.velocity {
+        arrays.push(array("velocity", 3, vectors(&v[r.clone()])));
+    }
+    if let Some(stress) = s.stress {
+        let flat = stress[r.clone()].iter().flatten().flatten().copied();
+        arrays.push(array("stress", 9, Values::F64(flat.collect())));
+    }
+    arrays.push(array("volume", 1, Values::F64(p.volume[r.clone()].to_vec())));
+    arrays.push(array("horizon", 1, Values::F64(p.horizon[r.clone()].to_vec())));
+    let material = p.material[r.clone()].iter().map(|&m| m as i32);
+    arrays.push(array("material", 1, Values::I32(material.collect())));
+    let counts = if range.is_empty() {
+        Vec::new()
+    } else {
+        s.disc.bonds.touch_counts(p.len())[range.clone()]
+            .iter()
+            .map(|&c| c as i32)
+            .collect()
+    };
+    arrays.push(array("bond_count", 1, Values::I32(counts)));
+    if let Some(damage) = s.damage {
+        arrays.push(array("damage", 1, Values::F64(damage[range].to_vec())));
+    }
+    arrays
+}
+
 /// Writes one VTU file of the points.
 pub fn write(path: &Path, s: &PointData) -> Result<(), Error> {
+    write_piece(path, s, 0..s.disc.points.len())
+}
+
+/// The points of piece `piece` of `pieces` (contiguous equal shares of the
+/// point order; the first ones take the remainder's points one each).
+pub fn piece_range(points: usize, piece: usize, pieces: usize) -> Range<usize> {
+    let start = |k: usize| k * (points / pieces) + k.min(points % pieces);
+    start(piece)..start(piece + 1)
+}
+
+/// Writes the points `range` as one VTU file (a whole body, or one piece of a
+/// parallel file).
+pub fn write_piece(path: &Path, s: &PointData, range: Range<usize>) -> Result<(), Error> {
     s.ensure_finite(path)?;
     let p = &s.disc.points;
-    let n = p.len();
+    let n = range.len();
     let binary = n >= BINARY_FROM;
-    let bonds = s.disc.bonds.touch_counts(n);
     let mut t = String::with_capacity(n * if binary { 120 } else { 200 });
     t.push_str("<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n<UnstructuredGrid>\n");
     let _ = writeln!(t, "<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\">");
     t.push_str("<Points>\n");
-    array(&mut t, "points", 3, &vectors(&p.x), binary);
+    array(&mut t, "points", 3, &vectors(&p.x[range.clone()]), binary);
     t.push_str("</Points>\n<Cells>\n");
-    array(
-        &mut t,
-        "connectivity",
-        1,
-        &Values::I64((0..n as i64).collect()),
-        binary,
-    );
-    array(
-        &mut t,
-        "offsets",
-        1,
-        &Values::I64((1..=n as i64).collect()),
-        binary,
-    );
-    array(&mut t, "types", 1, &Values::U8(vec![1; n]), binary);
+    for (name, values) in cells(n) {
+        array(&mut t, name, 1, &values, binary);
+    }
     t.push_str("</Cells>\n<PointData Vectors=\"displacement\">\n");
-    array(&mut t, "displacement", 3, &vectors(s.u), binary);
-    if let Some(v) = s.velocity {
-        array(&mut t, "velocity", 3, &vectors(v), binary);
-    }
-    if let Some(stress) = s.stress {
-        let flat = stress.iter().flatten().flatten().copied().collect();
-        array(&mut t, "stress", 9, &Values::F64(flat), binary);
-    }
-    array(&mut t, "volume", 1, &Values::F64(p.volume.clone()), binary);
-    array(
-        &mut t,
-        "horizon",
-        1,
-        &Values::F64(p.horizon.clone()),
-        binary,
-    );
-    let material = p.material.iter().map(|&m| m as i32).collect();
-    array(&mut t, "material", 1, &Values::I32(material), binary);
-    let counts = bonds.iter().map(|&c| c as i32).collect();
-    array(&mut t, "bond_count", 1, &Values::I32(counts), binary);
-    if let Some(damage) = s.damage {
-        array(&mut t, "damage", 1, &Values::F64(damage.to_vec()), binary);
+    for a in point_arrays(s, range) {
+        array(&mut t, a.name, a.components, &a.values, binary);
     }
     t.push_str("</PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n");
+    super::write_file(path, &t)
+}
+
+/// The vertex cells of `n` points: connectivity, offsets, types.
+fn cells(n: usize) -> [(&'static str, Values); 3] {
+    [
+        ("connectivity", Values::I64((0..n as i64).collect())),
+        ("offsets", Values::I64((1..=n as i64).collect())),
+        ("types", Values::U8(vec![1; n])),
+    ]
+}
+
+/// Writes ParaView's parallel file (`.pvtu`) of the points: the arrays every
+/// piece holds and the pieces' file names (relative to `path`'s directory).
+pub fn write_parallel(path: &Path, s: &PointData, pieces: &[String]) -> Result<(), Error> {
+    let mut t = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"PUnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\" header_type=\"UInt32\">\n<PUnstructuredGrid GhostLevel=\"0\">\n",
+    );
+    let declare = |t: &mut String, name: &str, components: usize, values: &Values| {
+        let _ = writeln!(
+            t,
+            "<PDataArray type=\"{}\" Name=\"{name}\" NumberOfComponents=\"{components}\"/>",
+            values.vtk_type()
+        );
+    };
+    t.push_str("<PPoints>\n");
+    declare(&mut t, "points", 3, &Values::F64(Vec::new()));
+    t.push_str("</PPoints>\n<PCells>\n");
+    for (name, values) in cells(0) {
+        declare(&mut t, name, 1, &values);
+    }
+    t.push_str("</PCells>\n<PPointData Vectors=\"displacement\">\n");
+    for a in point_arrays(s, 0..0) {
+        declare(&mut t, a.name, a.components, &a.values);
+    }
+    t.push_str("</PPointData>\n");
+    for piece in pieces {
+        let _ = writeln!(t, "<Piece Source=\"{piece}\"/>");
+    }
+    t.push_str("</PUnstructuredGrid>\n</VTKFile>\n");
     super::write_file(path, &t)
 }
 

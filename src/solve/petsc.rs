@@ -48,6 +48,7 @@ use crate::assembly::pattern::Pattern;
 use crate::error::{Error, InputError, NumericalError};
 use serde::Serialize;
 use std::ffi::{c_char, c_int, CStr, CString};
+use std::path::{Path, PathBuf};
 use std::ptr::{null, null_mut};
 
 /// The C declarations (PETSc 3.18, Open MPI 4.1).
@@ -99,9 +100,10 @@ mod ffi {
         /// Indexed by `KSPConvergedReason`, negative values included.
         pub static KSPConvergedReasons: *const *const c_char;
 
-        /// Open MPI's predefined handles (`MPI_DOUBLE` and `MPI_SUM` are
+        /// Open MPI's predefined handles (`MPI_DOUBLE`, `MPI_BYTE` and `MPI_SUM` are
         /// their addresses).
         pub static ompi_mpi_double: Opaque;
+        pub static ompi_mpi_byte: Opaque;
         pub static ompi_mpi_op_sum: Opaque;
 
         pub fn MPI_Comm_rank(comm: MPI_Comm, rank: *mut c_int) -> c_int;
@@ -112,6 +114,13 @@ mod ffi {
             count: c_int,
             datatype: *const Opaque,
             op: *const Opaque,
+            comm: MPI_Comm,
+        ) -> c_int;
+        pub fn MPI_Bcast(
+            buffer: *mut c_void,
+            count: c_int,
+            datatype: *const Opaque,
+            root: c_int,
             comm: MPI_Comm,
         ) -> c_int;
 
@@ -359,11 +368,30 @@ pub(crate) fn sum_over_processes(value: f64) -> f64 {
     sum
 }
 
+/// Rank 0's `path` on every process (a collective call; the other ranks
+/// pass `None`): where they write their pieces of rank 0's results.
+pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
+    use std::os::unix::ffi::{OsStrExt, OsStringExt};
+    ensure_initialized()?;
+    let mut bytes = path.map_or_else(Vec::new, |p| p.as_os_str().as_bytes().to_vec());
+    let mut length = (bytes.len() as u64).to_le_bytes();
+    // SAFETY: MPI is initialised; every process passes buffers of the
+    // broadcast's size (the length first); MPI's default error handler aborts.
+    unsafe {
+        let byte = &raw const ffi::ompi_mpi_byte;
+        ffi::MPI_Bcast(length.as_mut_ptr().cast(), 8, byte, 0, ffi::PETSC_COMM_WORLD);
+        bytes.resize(u64::from_le_bytes(length) as usize, 0);
+        let count = c_int::try_from(bytes.len()).unwrap_or(c_int::MAX);
+        ffi::MPI_Bcast(bytes.as_mut_ptr().cast(), count, byte, 0, ffi::PETSC_COMM_WORLD);
+    }
+    Ok(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+}
+
 /// `result` on every process when every process has `Ok`; otherwise this
 /// process's error, or on a process that had none an error naming how many
 /// failed (a collective call: a process must not go on alone into PETSc's
 /// collective calls while another stops).
-pub(crate) fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
+pub fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
     let failed = sum_over_processes(f64::from(u8::from(result.is_err())));
     match result {
         Ok(_) if failed > 0.0 => Err(NumericalError::Solver(format!(

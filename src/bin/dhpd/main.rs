@@ -10,7 +10,8 @@
 //! Built with the `mpi` feature, every run initialises PETSc and MPI
 //! (`mpirun -np N dhpd run SCENE -- PETSC_OPTIONS`): scenes with
 //! `solver.method = "petsc"` solve on all the processes, rank 0 alone prints
-//! the notes and reports and writes the results, and every rank prints its
+//! the notes and reports and writes the results (every rank its piece of
+//! `points.pvtu`, into rank 0's staging directory), and every rank prints its
 //! errors.
 //!
 //! Exit codes: 0 success, 2 input error, 3 numerical failure, 4 I/O error,
@@ -135,6 +136,22 @@ impl World {
         #[cfg(not(feature = "mpi"))]
         1
     }
+
+    /// Rank 0's `path` on every process (collective; the others pass `None`).
+    fn share_path(&self, path: Option<&Path>) -> Result<PathBuf, Error> {
+        #[cfg(feature = "mpi")]
+        return dhpd::mpi::share_path(path);
+        #[cfg(not(feature = "mpi"))]
+        Ok(path.map(Path::to_path_buf).unwrap_or_default())
+    }
+
+    /// `result` where every process has `Ok`, else an error (collective).
+    fn on_every_process(&self, result: Result<(), Error>) -> Result<(), Error> {
+        #[cfg(feature = "mpi")]
+        return dhpd::mpi::on_every_process(result);
+        #[cfg(not(feature = "mpi"))]
+        result
+    }
 }
 
 /// The observer of a run on the command line: notes on stderr, progress on
@@ -191,8 +208,20 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
         )
         .into());
     }
+    let several = world.size() > 1;
     if world.rank() > 0 {
-        return dhpd::run(scene, &mut ());
+        // Each writes its piece of the points' VTK file into rank 0's staging
+        // directory, which rank 0 commits once every piece is written.
+        let staging = world.share_path(None)?;
+        let solution = dhpd::run(scene, &mut ())?;
+        let written = match &solution {
+            Solution::Static(s) => {
+                dhpd::output::write_vtu_piece(&staging, scene, s, world.rank(), world.size())
+            }
+            _ => Ok(()),
+        };
+        world.on_every_process(written)?;
+        return Ok(solution);
     }
     let start = Instant::now();
     let dir = out
@@ -201,17 +230,25 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
     let mut notes = Notes::default();
     let results = Results::new(&dir, &mut notes);
     print_notes(&mut notes);
+    let results = results?.in_pieces(world.size());
+    if several {
+        world.share_path(Some(results.staging_path()))?;
+    }
     let mut console = Console {
-        results: results?,
+        results,
         progress: None,
     };
     let solution = dhpd::run(scene, &mut console)?;
     if let Some(p) = &mut console.progress {
         p.finish();
     }
+    let elapsed = start.elapsed().as_secs_f64();
     console
         .results
-        .finish(scene, &solution, start.elapsed().as_secs_f64())?;
+        .finish_joined(scene, &solution, elapsed, |written| match several {
+            true => world.on_every_process(written),
+            false => written,
+        })?;
     report::print(scene, &solution, &dir);
     Ok(solution)
 }
