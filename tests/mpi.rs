@@ -101,21 +101,11 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
         run(&reference_scene, &reference_out, None);
         let reference = displacements(&reference_out);
         let reference_counts = summary(&reference_out)["counts"].clone();
-        let max_u = reference
-            .iter()
-            .map(|u| u.iter().map(|v| v * v).sum::<f64>().sqrt())
-            .fold(0.0, f64::max);
-        assert!(max_u > 0.0, "{name}: the reference moves");
         for processes in [1, 2, 3] {
             let out = dir.join(format!("{name}_np{processes}"));
             run(&scene, &out, Some(processes));
-            let u = displacements(&out);
-            assert_eq!(u.len(), reference.len(), "{name}: the same points");
-            let difference = u
-                .iter()
-                .zip(&reference)
-                .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
-                .fold(0.0, f64::max);
+            let (difference, max_u) = difference(&displacements(&out), &reference);
+            assert!(max_u > 0.0, "{name}: the reference moves");
             let s = summary(&out);
             let petsc = &s["counts"]["petsc"];
             eprintln!(
@@ -153,6 +143,62 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
     }
     std::fs::remove_dir_all(&dir).ok();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// The largest difference between two displacement fields, and the largest
+/// displacement of the second.
+fn difference(u: &[Vec<f64>], reference: &[Vec<f64>]) -> (f64, f64) {
+    assert_eq!(u.len(), reference.len(), "the same points");
+    let max_u = reference
+        .iter()
+        .map(|u| u.iter().map(|v| v * v).sum::<f64>().sqrt())
+        .fold(0.0, f64::max);
+    let largest = u
+        .iter()
+        .zip(reference)
+        .flat_map(|(a, b)| a.iter().zip(b).map(|(x, y)| (x - y).abs()))
+        .fold(0.0, f64::max);
+    (largest, max_u)
+}
+
+#[test]
+fn mumps_on_one_and_two_processes_matches_the_single_process_solve() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-mumps-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // Partial constraints (identity rows) and a non-symmetric K.
+    for name in ["plate_hole", "shear_hole"] {
+        let text = std::fs::read_to_string(scene_path(name)).unwrap();
+        let reference_scene = dir.join(format!("{name}_reference.toml"));
+        std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
+        let reference_out = dir.join(format!("{name}_reference"));
+        run(&reference_scene, &reference_out, None);
+        let reference = displacements(&reference_out);
+        let scene = dir.join(format!("{name}_mumps.toml"));
+        let mumps = "method = \"petsc\"\npetsc_solver = \"mumps\"";
+        std::fs::write(&scene, text.replace("method = \"petsc\"", mumps)).unwrap();
+        for processes in [1, 2] {
+            let out = dir.join(format!("{name}_mumps_np{processes}"));
+            run(&scene, &out, Some(processes));
+            let (difference, max_u) = difference(&displacements(&out), &reference);
+            let s = summary(&out);
+            let petsc = &s["counts"]["petsc"];
+            eprintln!(
+                "{name} by MUMPS on {processes} process(es): {} {}, residual {:.1e}, max \
+                 difference {:.1e} of max|u|",
+                petsc["ksp"],
+                petsc["pc"],
+                s["relative_residual"].as_f64().unwrap_or(f64::NAN),
+                difference / max_u
+            );
+            assert_eq!(petsc["pc"], "lu", "{name}: PETSc's LU");
+            assert!(
+                difference <= AGREEMENT * max_u,
+                "{name} by MUMPS on {processes} process(es): differs by {:.2e} of max|u|",
+                difference / max_u
+            );
+        }
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 /// The values of the ASCII data array `name` in the VTU text `vtu`.

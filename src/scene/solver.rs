@@ -7,7 +7,7 @@
 
 use super::fields::positive;
 use super::spec::{ModelKind, SolverSpec};
-pub use super::spec::{Ordering, Precision, SolverMethod};
+pub use super::spec::{Ordering, PetscSolver, Precision, SolverMethod};
 use crate::error::InputError;
 
 /// Bytes per GiB.
@@ -31,6 +31,8 @@ pub struct SolverSettings {
     pub ordering: Ordering,
     /// Precision of the Cholesky factor.
     pub precision: Precision,
+    /// What PETSc solves with (the `petsc` route).
+    pub petsc_solver: PetscSolver,
 }
 
 impl SolverSettings {
@@ -47,6 +49,7 @@ impl SolverSettings {
             refactor_iterations: None,
             ordering: Ordering::Auto,
             precision: Precision::Auto,
+            petsc_solver: PetscSolver::Gamg,
         }
     }
 }
@@ -82,6 +85,13 @@ pub(super) fn validate(
             }
         }
     }
+    if spec.petsc_solver.is_some() && spec.method != Some(SolverMethod::Petsc) {
+        return Err(InputError::new(
+            "solver.petsc_solver",
+            "chooses what PETSc solves with, and applies to solver.method = \"petsc\" only; \
+             remove it or set the method",
+        ));
+    }
     if spec.refactor_iterations == Some(0) {
         return Err(InputError::new(
             "solver.refactor_iterations",
@@ -102,6 +112,7 @@ pub(super) fn validate(
         refactor_iterations: spec.refactor_iterations,
         ordering: spec.ordering.unwrap_or_default(),
         precision: spec.precision.unwrap_or_default(),
+        petsc_solver: spec.petsc_solver.unwrap_or_default(),
     })
 }
 
@@ -129,7 +140,19 @@ fn check_petsc(static_run: bool) -> Result<(), InputError> {
 
 #[cfg(test)]
 mod tests {
-    use super::check_petsc;
+    use super::{check_petsc, validate, PetscSolver, SolverSpec};
+    use crate::scene::ModelKind;
+
+    #[test]
+    fn the_petsc_solver_needs_the_petsc_route() {
+        let spec = SolverSpec {
+            petsc_solver: Some(PetscSolver::Mumps),
+            ..Default::default()
+        };
+        let e = validate(&spec, ModelKind::BondBased, true).unwrap_err();
+        assert_eq!(e.field, "solver.petsc_solver");
+        assert!(e.message.contains("\"petsc\" only"), "{}", e.message);
+    }
 
     #[test]
     fn petsc_is_refused_where_it_cannot_run() {

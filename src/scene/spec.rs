@@ -525,6 +525,19 @@ pub enum SolverMethod {
     Petsc,
 }
 
+/// What PETSc solves with on the `petsc` route (`solver.petsc_solver`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PetscSolver {
+    /// CG (GMRES for a non-symmetric `K`) preconditioned by algebraic
+    /// multigrid (GAMG) with the rigid motions as its near-null space.
+    #[default]
+    Gamg,
+    /// MUMPS's distributed sparse LU (PETSc's external package), applied
+    /// once: a direct solve on many processes.
+    Mumps,
+}
+
 /// The fill-reducing ordering of the Cholesky factor (`solver.ordering`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -584,6 +597,9 @@ pub struct SolverSpec {
     /// only that fits in memory), `"double"` or `"mixed"` (single-precision
     /// factor, full accuracy recovered by CG or GMRES preconditioned by it).
     pub precision: Option<Precision>,
+    /// With `method = "petsc"`: `"gamg"` (default: CG or GMRES with algebraic
+    /// multigrid) or `"mumps"` (MUMPS's distributed sparse LU).
+    pub petsc_solver: Option<PetscSolver>,
 }
 
 /// `[output]`

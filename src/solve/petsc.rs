@@ -20,6 +20,10 @@
 //! process fails ([`on_every_process`]) stops all of them, so that none goes
 //! on alone into PETSc's collective calls.
 //!
+//! With `solver.petsc_solver = "mumps"` PETSc factorises instead, by MUMPS's
+//! distributed sparse LU (an external package of Debian's PETSc), applied once
+//! (`-ksp_type preonly`), its residual checked in the same way.
+//!
 //! **Unknowns.** PETSc's rows are `d` per point with a free component (block
 //! size `d`, as GAMG's rigid-motion near-null space needs). A prescribed
 //! component of such a point (a roller) is an identity row scaled by the mean
@@ -46,6 +50,7 @@ use super::{Layout, GMRES_TOLERANCE};
 use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 use crate::error::{Error, InputError, NumericalError};
+use crate::scene::solver::PetscSolver;
 use serde::Serialize;
 use std::ffi::{c_char, c_int, CStr, CString};
 use std::path::{Path, PathBuf};
@@ -206,6 +211,7 @@ mod ffi {
         pub fn KSPGetPC(ksp: KSP, pc: *mut PC) -> PetscErrorCode;
         pub fn PCSetType(pc: PC, kind: *const c_char) -> PetscErrorCode;
         pub fn PCGetType(pc: PC, kind: *mut *const c_char) -> PetscErrorCode;
+        pub fn PCFactorSetMatSolverType(pc: PC, kind: *const c_char) -> PetscErrorCode;
         pub fn KSPSetTolerances(
             ksp: KSP,
             rtol: PetscReal,
@@ -432,6 +438,10 @@ pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], dofs: &DofMap) -> Res
     );
     let numbering = Numbering::new(pattern, dofs, processes)?;
     let (mut skew, mut total) = (0.0, 0.0);
+    // Own columns k in increasing order: row k of every column r is reached
+    // in increasing order too, so a cursor per column finds it by moving
+    // forward (past the rows of other processes' points), as a transposition.
+    let mut cursor = pattern.col_ptr.clone();
     for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
         for c in 0..dofs.d {
             let k = dofs.free_index[3 * q + c];
@@ -441,12 +451,18 @@ pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], dofs: &DofMap) -> Res
             let k = k as usize;
             for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
                 let r = pattern.row_idx[p];
-                let column = &pattern.row_idx[pattern.col_ptr[r]..pattern.col_ptr[r + 1]];
-                let transposed = column
-                    .binary_search(&k)
-                    .map(|t| values[pattern.col_ptr[r] + t])
-                    .expect("a ghost column holds the transposed entry");
-                skew += (values[p] - transposed).powi(2);
+                let (t, end) = (&mut cursor[r], pattern.col_ptr[r + 1]);
+                while *t < end && pattern.row_idx[*t] < k {
+                    *t += 1;
+                }
+                if *t == end || pattern.row_idx[*t] != k {
+                    return Err(NumericalError::Solver(format!(
+                        "column {r} of K lacks row {k} on this process (a defect of the \
+                         partition's ghost points)"
+                    ))
+                    .into());
+                }
+                skew += (values[p] - values[*t]).powi(2);
                 total += values[p] * values[p];
             }
         }
@@ -556,12 +572,14 @@ impl Solver {
     /// Hands this process's rows of `K` (`values` on `pattern`, which holds
     /// at least the [`assembled_columns`]: PETSc wants rows where dhpd stores
     /// columns) to PETSc, and sets up CG (GMRES if not `symmetric`) with GAMG
-    /// and the rigid motions of the points of `layout`.
+    /// and the rigid motions of the points of `layout`, or MUMPS's LU
+    /// (`solver`).
     pub(super) fn new(
         pattern: &Pattern,
         values: &[f64],
         layout: Layout,
         symmetric: bool,
+        solver: PetscSolver,
     ) -> Result<Self, Error> {
         ensure_initialized()?;
         // SAFETY: PETSc is initialised, so this global is set.
@@ -627,7 +645,16 @@ impl Solver {
         }
         let mut pc = null_mut();
         call!(KSPGetPC(krylov.0, &mut pc))?;
-        call!(PCSetType(pc, c"gamg".as_ptr()))?;
+        match solver {
+            PetscSolver::Gamg => call!(PCSetType(pc, c"gamg".as_ptr()))?,
+            PetscSolver::Mumps => {
+                // The factor applied once; the residual check below says how
+                // well (a Krylov method over it: -ksp_type gmres).
+                call!(KSPSetType(krylov.0, c"preonly".as_ptr()))?;
+                call!(PCSetType(pc, c"lu".as_ptr()))?;
+                call!(PCFactorSetMatSolverType(pc, c"mumps".as_ptr()))?;
+            }
+        }
         call!(KSPSetTolerances(
             krylov.0,
             GMRES_TOLERANCE,

@@ -359,8 +359,13 @@ impl Pipeline {
         if self.source == Source::Petsc {
             // The old set-up goes before the new one is built.
             self.factor = Factor::Petsc(None);
-            let solver =
-                super::petsc::Solver::new(&self.pattern, &m.k.values, layout, self.symmetric)?;
+            let solver = super::petsc::Solver::new(
+                &self.pattern,
+                &m.k.values,
+                layout,
+                self.symmetric,
+                self.settings.petsc_solver,
+            )?;
             self.factor = Factor::Petsc(Some(solver));
             self.factored = true;
             return Ok(());
