@@ -118,6 +118,20 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
                 difference / max_u
             );
             assert_eq!(petsc["processes"], processes, "{name}: processes reported");
+            // Recursive bisection cuts each part within one point's entries of
+            // its share (a point holds < 1 % of a part's here): balanced to 5 %.
+            let entries: Vec<f64> = petsc["entries_per_process"]
+                .as_array()
+                .expect("entries per process")
+                .iter()
+                .map(|e| e.as_f64().expect("a count"))
+                .collect();
+            let mean = entries.iter().sum::<f64>() / processes as f64;
+            assert!(
+                entries.len() == processes
+                    && entries.iter().all(|&e| (e - mean).abs() <= 0.05 * mean),
+                "{name} on {processes} process(es): unbalanced parts {entries:?}"
+            );
             // Each process assembles its own columns and its ghosts': together
             // they are the single-process K, entry for entry.
             let counts = &s["counts"];

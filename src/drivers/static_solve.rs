@@ -218,7 +218,9 @@ fn solve_with(
         _ => in_range,
     };
     in_range?;
-    let asymmetry = system.pipeline.asymmetry(&system.stiffness, &dofs)?;
+    let asymmetry = system
+        .pipeline
+        .asymmetry(&system.stiffness, super::system::layout(&disc, &dofs))?;
     // The model's residual, from the bond forces (Pipeline::solve_with_residual).
     let model_residual = |x: &[f64]| -> Vec<f64> {
         let f_int = internal_forces(model, &disc, &dofs.expand(x), true);

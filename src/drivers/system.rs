@@ -109,7 +109,7 @@ fn stiffness_pattern(
     #[cfg(feature = "mpi")]
     if settings.method == SolverMethod::Petsc {
         return Pattern::with_columns(disc, dofs, coupling, limit, |points| {
-            crate::solve::petsc::assembled_columns(points, dofs)
+            crate::solve::petsc::assembled_columns(points, dofs, &disc.points.x)
         });
     }
     Ok(Pattern::new(disc, dofs, coupling, limit)?)

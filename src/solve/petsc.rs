@@ -4,9 +4,9 @@
 //!
 //! **What is distributed: the assembly and the linear solve.** Every process
 //! reads the scene and discretises the whole body (replicated: points, bonds
-//! and the point-level pattern, a few KB per point), then takes a contiguous
-//! block of points in dhpd's point order ([`Numbering`], balanced by the stored
-//! entries of `K` in their rows) and assembles only the columns of `K` of its
+//! and the point-level pattern, a few KB per point), then takes its part of
+//! the points (recursive coordinate bisection, [`Numbering`], balanced by the
+//! stored entries of `K` in their rows) and assembles only the columns of `K` of its
 //! own points and of their ghost points, the points coupled to them (within
 //! a horizon for the bond-based model, two for the shear model, whose bonds
 //! couple neighbours of neighbours: [`assembled_columns`]). Its rows of `K`,
@@ -355,23 +355,30 @@ fn initialized() -> Result<bool, Error> {
 /// call). On a process where PETSc is not initialised (a library caller's
 /// single process), `value` itself.
 pub(crate) fn sum_over_processes(value: f64) -> f64 {
-    if !initialized().unwrap_or(false) {
-        return value;
+    let mut sum = [value];
+    sum_each_over_processes(&mut sum);
+    sum[0]
+}
+
+/// Every entry of `values` summed over the processes, in place (a collective
+/// call with the same length on every process).
+fn sum_each_over_processes(values: &mut [f64]) {
+    if !initialized().unwrap_or(false) || values.is_empty() {
+        return;
     }
-    let mut sum = value;
-    // SAFETY: MPI is initialised; one double in, one out; MPI's default error
-    // handler aborts the run instead of returning an error code.
+    let mine = values.to_vec();
+    // SAFETY: MPI is initialised; `values.len()` doubles in, as many out;
+    // MPI's default error handler aborts the run instead of returning a code.
     unsafe {
         ffi::MPI_Allreduce(
-            (&raw const value).cast(),
-            (&raw mut sum).cast(),
-            1,
+            mine.as_ptr().cast(),
+            values.as_mut_ptr().cast(),
+            c_int::try_from(values.len()).unwrap_or(c_int::MAX),
             &raw const ffi::ompi_mpi_double,
             &raw const ffi::ompi_mpi_op_sum,
             ffi::PETSC_COMM_WORLD,
         );
     }
-    sum
 }
 
 /// Rank 0's `path` on every process (a collective call; the other ranks
@@ -413,13 +420,17 @@ pub fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
 /// level): those of its own points ([`Numbering`]) and of every point coupled
 /// to them (its ghost points: within a horizon for the bond-based model, two
 /// for the shear model), whose columns hold the rest of its own rows.
-pub(crate) fn assembled_columns(pattern: &Pattern, dofs: &DofMap) -> Result<Vec<bool>, Error> {
+pub(crate) fn assembled_columns(
+    pattern: &Pattern,
+    dofs: &DofMap,
+    x: &[[f64; 3]],
+) -> Result<Vec<bool>, Error> {
     ensure_initialized()?;
     let (rank, processes) = (
         comm_query(ffi::MPI_Comm_rank),
         comm_query(ffi::MPI_Comm_size),
     );
-    let numbering = Numbering::new(pattern, dofs, processes)?;
+    let numbering = Numbering::new(pattern, dofs, x, processes)?;
     let mut keep = vec![false; pattern.row_offsets.len() - 1];
     for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
         pattern.rows(q).iter().for_each(|&p| keep[p as usize] = true);
@@ -430,17 +441,19 @@ pub(crate) fn assembled_columns(pattern: &Pattern, dofs: &DofMap) -> Result<Vec<
 /// `‖K − Kᵀ‖_F / ‖K‖_F` of a distributed `K` (`values` on this process's
 /// columns, [`assembled_columns`]): each process sums over its own columns,
 /// whose transposed entries lie in its ghost columns (a collective call).
-pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], dofs: &DofMap) -> Result<f64, Error> {
+pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
     ensure_initialized()?;
     let (rank, processes) = (
         comm_query(ffi::MPI_Comm_rank),
         comm_query(ffi::MPI_Comm_size),
     );
-    let numbering = Numbering::new(pattern, dofs, processes)?;
+    let dofs = layout.dofs;
+    let numbering = Numbering::new(pattern, dofs, layout.x, processes)?;
     let (mut skew, mut total) = (0.0, 0.0);
-    // Own columns k in increasing order: row k of every column r is reached
-    // in increasing order too, so a cursor per column finds it by moving
-    // forward (past the rows of other processes' points), as a transposition.
+    // Own columns k in increasing order (a part's points are in point order):
+    // row k of every column r is reached in increasing order too, so a cursor
+    // per column finds it by moving forward (past the rows of other
+    // processes' points), as a transposition.
     let mut cursor = pattern.col_ptr.clone();
     for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
         for c in 0..dofs.d {
@@ -499,6 +512,9 @@ pub struct PetscReport {
     pub iterations: usize,
     /// `KSPConvergedReason`, as PETSc names it.
     pub converged_reason: String,
+    /// The stored entries of `K` in each process's rows (identity rows
+    /// included): the balance of the partition.
+    pub entries_per_process: Vec<usize>,
 }
 
 /// Owns a `Mat`.
@@ -563,6 +579,8 @@ pub(super) struct Solver {
     owned: Vec<u32>,
     /// The stored entries of `K` on all processes (identity rows left out).
     pub(super) stored_entries: usize,
+    /// The stored entries in each process's rows (identity rows included).
+    entries_per_process: Vec<usize>,
     processes: usize,
     /// The last solve's report.
     pub(super) report: Option<PetscReport>,
@@ -588,7 +606,7 @@ impl Solver {
             comm_query(ffi::MPI_Comm_rank),
             comm_query(ffi::MPI_Comm_size),
         );
-        let numbering = Numbering::new(pattern, layout.dofs, processes)?;
+        let numbering = Numbering::new(pattern, layout.dofs, layout.x, processes)?;
         let d = layout.d();
         let (first, last) = (
             numbering.bounds[rank] * d,
@@ -608,6 +626,10 @@ impl Solver {
             first..last,
         ))?;
         let stored_entries = sum_over_processes(stored as f64) as usize;
+        let mut per_process = vec![0.0; processes];
+        per_process[rank] = columns.len() as f64;
+        sum_each_over_processes(&mut per_process);
+        let entries_per_process = per_process.iter().map(|&e| e as usize).collect();
         let n_local = petsc_int(last - first, "rows")?;
         let n_global = petsc_int(numbering.points.len() * d, "rows")?;
         let mut matrix = Matrix(null_mut());
@@ -673,6 +695,7 @@ impl Solver {
             rows: numbering.rows,
             owned,
             stored_entries,
+            entries_per_process,
             processes,
             report: None,
         })
@@ -772,6 +795,7 @@ impl Solver {
             pc: text(pc_type),
             iterations,
             converged_reason: text(reason_name),
+            entries_per_process: self.entries_per_process.clone(),
         })
     }
 }
@@ -787,8 +811,10 @@ fn petsc_int(n: usize, what: &str) -> Result<PetscInt, Error> {
     })
 }
 
-/// PETSc's numbering: `d` rows per point with a free component, in point
-/// order, split into contiguous blocks of points, one per process.
+/// PETSc's numbering: `d` rows per point with a free component, the points
+/// split into one part per process by recursive coordinate bisection
+/// ([`bisect`]), balanced by the stored entries of `K` in their rows; PETSc's
+/// blocks are the parts in turn, each in dhpd's point order.
 struct Numbering {
     /// The points with a free component (PETSc's block `s` is `points[s]`).
     points: Vec<usize>,
@@ -799,52 +825,101 @@ struct Numbering {
 }
 
 impl Numbering {
-    /// The numbering of `dofs` split over `processes` (`pattern`: its point
-    /// level is enough, so that a process knows its points before it assembles).
-    fn new(pattern: &Pattern, dofs: &DofMap, processes: usize) -> Result<Self, Error> {
+    /// The numbering of `dofs` on the points at `x` split over `processes`
+    /// (`pattern`: its point level is enough, so that a process knows its
+    /// points before it assembles). Every process computes the same one.
+    fn new(
+        pattern: &Pattern,
+        dofs: &DofMap,
+        x: &[[f64; 3]],
+        processes: usize,
+    ) -> Result<Self, Error> {
         let d = dofs.d;
         let mut points: Vec<usize> = Vec::new();
-        let mut rows = Vec::with_capacity(dofs.free_dofs.len());
-        for &(i, c) in &dofs.free_dofs {
+        for &(i, _) in &dofs.free_dofs {
             // Free unknowns are numbered point by point (`DofMap::new`).
             if points.last() != Some(&(i as usize)) {
                 points.push(i as usize);
             }
-            rows.push(petsc_int((points.len() - 1) * d + c as usize, "rows")?);
         }
         petsc_int(points.len() * d, "rows")?;
         // Balance by stored entries of K (an identity row counts one): a free
         // component's row has the free components of the points coupled to it.
-        let weight = |i: usize| -> usize {
+        let mut weight = vec![0; x.len()];
+        for &i in &points {
             let row: usize = pattern
                 .rows(i)
                 .iter()
                 .map(|&p| dofs.free_count(p as usize))
                 .sum();
-            (0..d)
+            weight[i] = (0..d)
                 .map(|c| match dofs.free_index[3 * i + c] {
                     PRESCRIBED => 1,
                     _ => row,
                 })
-                .sum()
-        };
-        let total: usize = points.iter().map(|&i| weight(i)).sum();
-        let mut bounds = vec![0];
-        let mut sum = 0;
-        for (s, &i) in points.iter().enumerate() {
-            sum += weight(i);
-            // Block s closes every process whose share of the total it reaches.
-            while bounds.len() < processes && sum * processes >= bounds.len() * total {
-                bounds.push(s + 1);
-            }
+                .sum();
         }
-        bounds.resize(processes + 1, points.len());
+        let mut sizes = Vec::with_capacity(processes);
+        bisect(&mut points, &weight, x, processes.max(1), &mut sizes);
+        let mut bounds = vec![0];
+        for size in sizes {
+            bounds.push(bounds.last().expect("started") + size);
+        }
+        let mut block = vec![0; x.len()];
+        for (s, &i) in points.iter().enumerate() {
+            block[i] = s;
+        }
+        let rows = dofs
+            .free_dofs
+            .iter()
+            .map(|&(i, c)| (block[i as usize] * d + c as usize) as PetscInt)
+            .collect();
         Ok(Numbering {
             points,
             rows,
             bounds,
         })
     }
+}
+
+/// Splits `points` into `parts` parts of about equal `weight` (by point) by
+/// recursive coordinate bisection: the longest side of their bounding box is
+/// cut where the weight below reaches the share of the parts on that side
+/// (`⌊parts/2⌋` of `parts`), ties in the coordinate broken by the point's
+/// index, so that every process finds the same parts. The parts end up in
+/// turn in `points`, each in increasing point order, their sizes pushed to
+/// `sizes`. A cut across the body's longest side is the smallest of the
+/// straight cuts of a box, and with it the ghost layer of each process.
+fn bisect(points: &mut [usize], weight: &[usize], x: &[[f64; 3]], parts: usize, sizes: &mut Vec<usize>) {
+    if parts == 1 {
+        points.sort_unstable();
+        sizes.push(points.len());
+        return;
+    }
+    let extent = |axis: usize| {
+        let (low, high) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
+            (l.min(x[i][axis]), h.max(x[i][axis]))
+        });
+        high - low
+    };
+    let axis = (0..3)
+        .max_by(|&a, &b| extent(a).total_cmp(&extent(b)).then(b.cmp(&a)))
+        .expect("three axes");
+    points.sort_unstable_by(|&i, &j| x[i][axis].total_cmp(&x[j][axis]).then(i.cmp(&j)));
+    let lower = parts / 2;
+    let total: usize = points.iter().map(|&i| weight[i]).sum();
+    let mut below = 0;
+    let mut cut = points.len();
+    for (m, &i) in points.iter().enumerate() {
+        if below * parts >= total * lower {
+            cut = m;
+            break;
+        }
+        below += weight[i];
+    }
+    let (low, high) = points.split_at_mut(cut);
+    bisect(low, weight, x, lower, sizes);
+    bisect(high, weight, x, parts - lower, sizes);
 }
 
 /// One process's rows of `K` in CSR form with PETSc's column numbers.
@@ -862,8 +937,8 @@ struct LocalRows {
 /// components, scaled by the mean diagonal over all processes), gathered from
 /// the columns this process assembled: row `k` of `K` has an entry in the
 /// column of every unknown coupled to `k` (the pattern is structurally
-/// symmetric), and the columns, walked in order, give each row its entries in
-/// PETSc's column order (which follows dhpd's).
+/// symmetric), and the columns, walked in PETSc's order, give each row its
+/// entries sorted.
 fn local_rows(
     pattern: &Pattern,
     values: &[f64],
@@ -903,7 +978,14 @@ fn local_rows(
             free_rows += 1;
         }
     }
-    for column in 0..pattern.col_ptr.len() - 1 {
+    // The columns in PETSc's order, so that each row's entries come sorted.
+    let columns_in_order = numbering.points.iter().flat_map(|&i| {
+        (0..d)
+            .map(move |c| free_index[3 * i + c])
+            .filter(|&k| k != PRESCRIBED)
+            .map(|k| k as usize)
+    });
+    for column in columns_in_order {
         let petsc_column = numbering.rows[column];
         for p in pattern.col_ptr[column]..pattern.col_ptr[column + 1] {
             let row = pattern.row_idx[p];

@@ -42,7 +42,6 @@ use super::refine::{refine, refine_extended};
 use super::route::{self, Factor, Hints, OrderingReport, Source, LU_MAX_UNKNOWNS};
 use super::two_level::TwoLevel;
 use super::{norm2, relative_residual, Layout, Matrices, GMRES_TOLERANCE};
-use crate::assembly::dofs::DofMap;
 use crate::assembly::pattern::Pattern;
 use crate::assembly::stiffness::Stiffness;
 use crate::error::{Error, NumericalError};
@@ -314,11 +313,11 @@ impl Pipeline {
 
     /// `‖K − Kᵀ‖_F / ‖K‖_F` (a collective call on the `petsc` route).
     #[cfg_attr(not(feature = "mpi"), allow(unused_variables))]
-    pub fn asymmetry(&mut self, k: &Stiffness, dofs: &DofMap) -> Result<f64, Error> {
+    pub fn asymmetry(&mut self, k: &Stiffness, layout: Layout) -> Result<f64, Error> {
         #[cfg(feature = "mpi")]
         if self.source == Source::Petsc {
             // Each process holds its own columns and its ghosts' only.
-            return super::petsc::asymmetry(&self.pattern, &k.values, dofs);
+            return super::petsc::asymmetry(&self.pattern, &k.values, layout);
         }
         Ok(k.asymmetry(self.transpose()))
     }
