@@ -1,0 +1,307 @@
+//! How the points and `K` are split over the processes: recursive coordinate
+//! bisection into parts balanced by the stored entries of `K` ([`Numbering`]),
+//! the columns a process assembles (its own points' and its ghost points'),
+//! its rows gathered from them for PETSc ([`local_rows`]), and the asymmetry
+//! of the distributed `K`.
+
+use super::ffi::{self, PetscInt};
+use super::processes::{comm_query, ensure_initialized, sum_over_processes};
+use super::Layout;
+use crate::assembly::dofs::{DofMap, PRESCRIBED};
+use crate::assembly::pattern::Pattern;
+use crate::error::{Error, NumericalError};
+
+/// The point columns of `K` this process assembles (`pattern`: the point
+/// level): those of its own points ([`Numbering`]) and of every point coupled
+/// to them (its ghost points: within a horizon for the bond-based model, two
+/// for the shear model), whose columns hold the rest of its own rows.
+pub(crate) fn assembled_columns(
+    pattern: &Pattern,
+    dofs: &DofMap,
+    x: &[[f64; 3]],
+) -> Result<Vec<bool>, Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    let numbering = Numbering::new(pattern, dofs, x, processes)?;
+    let mut keep = vec![false; pattern.row_offsets.len() - 1];
+    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
+        pattern.rows(q).iter().for_each(|&p| keep[p as usize] = true);
+    }
+    Ok(keep)
+}
+
+/// `‖K − Kᵀ‖_F / ‖K‖_F` of a distributed `K` (`values` on this process's
+/// columns, [`assembled_columns`]): each process sums over its own columns,
+/// whose transposed entries lie in its ghost columns (a collective call).
+pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    let dofs = layout.dofs;
+    let numbering = Numbering::new(pattern, dofs, layout.x, processes)?;
+    let (mut skew, mut total) = (0.0, 0.0);
+    // Own columns k in increasing order (a part's points are in point order):
+    // row k of every column r is reached in increasing order too, so a cursor
+    // per column finds it by moving forward (past the rows of other
+    // processes' points), as a transposition.
+    let mut cursor = pattern.col_ptr.clone();
+    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
+        for c in 0..dofs.d {
+            let k = dofs.free_index[3 * q + c];
+            if k == PRESCRIBED {
+                continue;
+            }
+            let k = k as usize;
+            for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
+                let r = pattern.row_idx[p];
+                let (t, end) = (&mut cursor[r], pattern.col_ptr[r + 1]);
+                while *t < end && pattern.row_idx[*t] < k {
+                    *t += 1;
+                }
+                if *t == end || pattern.row_idx[*t] != k {
+                    return Err(NumericalError::Solver(format!(
+                        "column {r} of K lacks row {k} on this process (a defect of the \
+                         partition's ghost points)"
+                    ))
+                    .into());
+                }
+                skew += (values[p] - values[*t]).powi(2);
+                total += values[p] * values[p];
+            }
+        }
+    }
+    let (skew, total) = (sum_over_processes(skew), sum_over_processes(total));
+    Ok(if total > 0.0 { (skew / total).sqrt() } else { 0.0 })
+}
+
+/// `n` as a `PetscInt`, or an error naming `what` (32-bit indices).
+pub(super) fn petsc_int(n: usize, what: &str) -> Result<PetscInt, Error> {
+    PetscInt::try_from(n).map_err(|_| {
+        NumericalError::Solver(format!(
+            "{n} {what} exceed the 32-bit indices of this PETSc (a 64-bit-index build, \
+             Debian's libpetsc64-real-dev, would need dhpd's PetscInt changed to i64)"
+        ))
+        .into()
+    })
+}
+
+/// PETSc's numbering: `d` rows per point with a free component, the points
+/// split into one part per process by recursive coordinate bisection
+/// ([`bisect`]), balanced by the stored entries of `K` in their rows; PETSc's
+/// blocks are the parts in turn, each in dhpd's point order.
+pub(super) struct Numbering {
+    /// The points with a free component (PETSc's block `s` is `points[s]`).
+    pub(super) points: Vec<usize>,
+    /// PETSc's row of every free unknown.
+    pub(super) rows: Vec<PetscInt>,
+    /// Process `r` owns the blocks `bounds[r]..bounds[r + 1]`.
+    pub(super) bounds: Vec<usize>,
+}
+
+impl Numbering {
+    /// The numbering of `dofs` on the points at `x` split over `processes`
+    /// (`pattern`: its point level is enough, so that a process knows its
+    /// points before it assembles). Every process computes the same one.
+    pub(super) fn new(
+        pattern: &Pattern,
+        dofs: &DofMap,
+        x: &[[f64; 3]],
+        processes: usize,
+    ) -> Result<Self, Error> {
+        let d = dofs.d;
+        let mut points: Vec<usize> = Vec::new();
+        for &(i, _) in &dofs.free_dofs {
+            // Free unknowns are numbered point by point (`DofMap::new`).
+            if points.last() != Some(&(i as usize)) {
+                points.push(i as usize);
+            }
+        }
+        petsc_int(points.len() * d, "rows")?;
+        // Balance by stored entries of K (an identity row counts one): a free
+        // component's row has the free components of the points coupled to it.
+        let mut weight = vec![0; x.len()];
+        for &i in &points {
+            let row: usize = pattern
+                .rows(i)
+                .iter()
+                .map(|&p| dofs.free_count(p as usize))
+                .sum();
+            weight[i] = (0..d)
+                .map(|c| match dofs.free_index[3 * i + c] {
+                    PRESCRIBED => 1,
+                    _ => row,
+                })
+                .sum();
+        }
+        let mut sizes = Vec::with_capacity(processes);
+        bisect(&mut points, &weight, x, processes.max(1), &mut sizes);
+        let mut bounds = vec![0];
+        for size in sizes {
+            bounds.push(bounds.last().expect("started") + size);
+        }
+        let mut block = vec![0; x.len()];
+        for (s, &i) in points.iter().enumerate() {
+            block[i] = s;
+        }
+        let rows = dofs
+            .free_dofs
+            .iter()
+            .map(|&(i, c)| (block[i as usize] * d + c as usize) as PetscInt)
+            .collect();
+        Ok(Numbering {
+            points,
+            rows,
+            bounds,
+        })
+    }
+}
+
+/// Splits `points` into `parts` parts of about equal `weight` (by point) by
+/// recursive coordinate bisection: the longest side of their bounding box is
+/// cut where the weight below reaches the share of the parts on that side
+/// (`⌊parts/2⌋` of `parts`), ties in the coordinate broken by the point's
+/// index, so that every process finds the same parts. The parts end up in
+/// turn in `points`, each in increasing point order, their sizes pushed to
+/// `sizes`. A cut across the body's longest side is the smallest of the
+/// straight cuts of a box, and with it the ghost layer of each process.
+fn bisect(points: &mut [usize], weight: &[usize], x: &[[f64; 3]], parts: usize, sizes: &mut Vec<usize>) {
+    if parts == 1 {
+        points.sort_unstable();
+        sizes.push(points.len());
+        return;
+    }
+    let extent = |axis: usize| {
+        let (low, high) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
+            (l.min(x[i][axis]), h.max(x[i][axis]))
+        });
+        high - low
+    };
+    let axis = (0..3)
+        .max_by(|&a, &b| extent(a).total_cmp(&extent(b)).then(b.cmp(&a)))
+        .expect("three axes");
+    points.sort_unstable_by(|&i, &j| x[i][axis].total_cmp(&x[j][axis]).then(i.cmp(&j)));
+    let lower = parts / 2;
+    let total: usize = points.iter().map(|&i| weight[i]).sum();
+    let mut below = 0;
+    let mut cut = points.len();
+    for (m, &i) in points.iter().enumerate() {
+        if below * parts >= total * lower {
+            cut = m;
+            break;
+        }
+        below += weight[i];
+    }
+    let (low, high) = points.split_at_mut(cut);
+    bisect(low, weight, x, lower, sizes);
+    bisect(high, weight, x, parts - lower, sizes);
+}
+
+/// One process's rows of `K` in CSR form with PETSc's column numbers.
+pub(super) struct LocalRows {
+    pub(super) offsets: Vec<PetscInt>,
+    pub(super) columns: Vec<PetscInt>,
+    pub(super) values: Vec<f64>,
+    /// The free unknown of each row (`PRESCRIBED`: an identity row).
+    pub(super) owned: Vec<u32>,
+    /// Entries of `K` among them (identity rows left out).
+    pub(super) stored: usize,
+}
+
+/// PETSc's rows `range` of `K` (module docs: identity rows for prescribed
+/// components, scaled by the mean diagonal over all processes), gathered from
+/// the columns this process assembled: row `k` of `K` has an entry in the
+/// column of every unknown coupled to `k` (the pattern is structurally
+/// symmetric), and the columns, walked in PETSc's order, give each row its
+/// entries sorted.
+pub(super) fn local_rows(
+    pattern: &Pattern,
+    values: &[f64],
+    layout: Layout,
+    numbering: &Numbering,
+    range: std::ops::Range<usize>,
+) -> Result<LocalRows, Error> {
+    let d = layout.d();
+    let free_index = &layout.dofs.free_index;
+    let owned: Vec<u32> = range
+        .clone()
+        .map(|row| free_index[3 * numbering.points[row / d] + row % d])
+        .collect();
+    let length = |k: u32| match k {
+        PRESCRIBED => 1,
+        k => pattern.col_ptr[k as usize + 1] - pattern.col_ptr[k as usize],
+    };
+    let mut offsets = Vec::with_capacity(owned.len() + 1);
+    offsets.push(0usize);
+    for &k in &owned {
+        offsets.push(offsets.last().expect("started") + length(k));
+    }
+    let entries = *offsets.last().expect("started");
+    let stored = entries - owned.iter().filter(|&&k| k == PRESCRIBED).count();
+    let mut columns = vec![0 as PetscInt; entries];
+    let mut local_values = vec![0.0; entries];
+    // The next free slot of each row, and the local row of each owned unknown.
+    let mut next = offsets.clone();
+    let mut local_row = vec![u32::MAX; numbering.rows.len()];
+    let (mut diagonal, mut free_rows) = (0.0, 0usize);
+    for (r, &k) in owned.iter().enumerate() {
+        if k == PRESCRIBED {
+            // In range: `Numbering::new` checked the rows' count.
+            columns[offsets[r]] = (range.start + r) as PetscInt;
+        } else {
+            local_row[k as usize] = r as u32;
+            free_rows += 1;
+        }
+    }
+    // The columns in PETSc's order, so that each row's entries come sorted.
+    let columns_in_order = numbering.points.iter().flat_map(|&i| {
+        (0..d)
+            .map(move |c| free_index[3 * i + c])
+            .filter(|&k| k != PRESCRIBED)
+            .map(|k| k as usize)
+    });
+    for column in columns_in_order {
+        let petsc_column = numbering.rows[column];
+        for p in pattern.col_ptr[column]..pattern.col_ptr[column + 1] {
+            let row = pattern.row_idx[p];
+            let r = local_row[row] as usize;
+            if r == u32::MAX as usize {
+                continue;
+            }
+            if row == column {
+                diagonal += values[p].abs();
+            }
+            columns[next[r]] = petsc_column;
+            local_values[next[r]] = values[p];
+            next[r] += 1;
+        }
+    }
+    let identity =
+        sum_over_processes(diagonal) / sum_over_processes(free_rows as f64).max(1.0);
+    for (r, &k) in owned.iter().enumerate() {
+        if k == PRESCRIBED {
+            local_values[offsets[r]] = identity;
+        } else if next[r] != offsets[r + 1] {
+            return Err(NumericalError::Solver(format!(
+                "row {} of K is incomplete on this process: its ghost columns are missing \
+                 (a defect of the partition)",
+                range.start + r
+            ))
+            .into());
+        }
+    }
+    Ok(LocalRows {
+        offsets: offsets
+            .iter()
+            .map(|&o| petsc_int(o, "entries on one process"))
+            .collect::<Result<_, _>>()?,
+        columns,
+        values: local_values,
+        owned,
+        stored,
+    })
+}

@@ -1,0 +1,174 @@
+//! The processes of an MPI run as dhpd sees them: PETSc and MPI initialised
+//! for the life of a [`Petsc`], this process's rank, and the few collective
+//! calls dhpd makes itself (a sum over the processes, rank 0's path shared,
+//! an error on one process made an error on all), through MPI's C API
+//! (`MPI_Allreduce`, `MPI_Bcast`) rather than the `mpi` crate, whose bindgen
+//! build needs libclang for three functions.
+
+use super::{check, ffi};
+use crate::error::{Error, InputError, NumericalError};
+use std::ffi::{c_char, c_int, CString};
+use std::path::{Path, PathBuf};
+use std::ptr::{null, null_mut};
+
+/// PETSc (and MPI) initialised for the life of this value: `PetscInitialize`
+/// on [`Petsc::init`], `PetscFinalize` on drop. One per process; the command
+/// line holds it for the whole run.
+pub struct Petsc {
+    /// The arguments PETSc was given; it keeps pointers to them until
+    /// `PetscFinalize`.
+    _args: Box<Arguments>,
+}
+
+/// `argc`/`argv` as C wants them, kept alive while PETSc is initialised.
+struct Arguments {
+    _strings: Vec<CString>,
+    pointers: Vec<*mut c_char>,
+    argc: c_int,
+    argv: *mut *mut c_char,
+}
+
+impl Petsc {
+    /// Initialises PETSc and MPI with PETSc `options` (`-ksp_monitor`, …) in
+    /// its options database. PETSc's own signal handlers are turned off
+    /// (`-no_signal_handler`): dhpd's handle SIGINT and SIGTERM.
+    pub fn init(options: &[String]) -> Result<Self, Error> {
+        if initialized()? {
+            return Err(NumericalError::Solver("PETSc is already initialised".into()).into());
+        }
+        let strings = ["dhpd", "-no_signal_handler"]
+            .into_iter()
+            .map(String::from)
+            .chain(options.iter().cloned())
+            .map(|s| {
+                CString::new(s).map_err(|_| {
+                    InputError::new("PETSc options", "an option holds a NUL character")
+                })
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let mut pointers: Vec<*mut c_char> = strings.iter().map(|s| s.as_ptr().cast_mut()).collect();
+        pointers.push(null_mut());
+        let mut args = Box::new(Arguments {
+            argc: strings.len() as c_int,
+            argv: null_mut(),
+            _strings: strings,
+            pointers,
+        });
+        args.argv = args.pointers.as_mut_ptr();
+        let Arguments { argc, argv, .. } = &mut *args;
+        call!(PetscInitialize(argc, argv, null(), null()))?;
+        Ok(Petsc { _args: args })
+    }
+
+    /// This process's rank in `PETSC_COMM_WORLD` (0 prints and writes).
+    pub fn rank(&self) -> usize {
+        comm_query(ffi::MPI_Comm_rank)
+    }
+
+    /// The number of processes.
+    pub fn size(&self) -> usize {
+        comm_query(ffi::MPI_Comm_size)
+    }
+}
+
+impl Drop for Petsc {
+    fn drop(&mut self) {
+        // SAFETY: initialised by `init`. PETSc objects live in a `Solver`,
+        // which a static solve drops before it returns.
+        unsafe { ffi::PetscFinalize() };
+    }
+}
+
+/// `MPI_Comm_rank` or `MPI_Comm_size` of `PETSC_COMM_WORLD` (0 on failure,
+/// which MPI's default error handler does not return from).
+pub(super) fn comm_query(query: unsafe extern "C" fn(ffi::MPI_Comm, *mut c_int) -> c_int) -> usize {
+    let mut value = 0;
+    // SAFETY: PETSc is initialised (the caller holds a `Petsc`, or checked).
+    unsafe { query(ffi::PETSC_COMM_WORLD, &mut value) };
+    value as usize
+}
+
+/// Whether PETSc is initialised in this process.
+pub(super) fn initialized() -> Result<bool, Error> {
+    let mut flag: ffi::PetscBool = 0;
+    call!(PetscInitialized(&mut flag))?;
+    Ok(flag != 0)
+}
+
+/// The sum of `value` over every process (`MPI_Allreduce`; a collective
+/// call). On a process where PETSc is not initialised (a library caller's
+/// single process), `value` itself.
+pub(crate) fn sum_over_processes(value: f64) -> f64 {
+    let mut sum = [value];
+    sum_each_over_processes(&mut sum);
+    sum[0]
+}
+
+/// Every entry of `values` summed over the processes, in place (a collective
+/// call with the same length on every process).
+pub(super) fn sum_each_over_processes(values: &mut [f64]) {
+    if !initialized().unwrap_or(false) || values.is_empty() {
+        return;
+    }
+    let mine = values.to_vec();
+    // SAFETY: MPI is initialised; `values.len()` doubles in, as many out;
+    // MPI's default error handler aborts the run instead of returning a code.
+    unsafe {
+        ffi::MPI_Allreduce(
+            mine.as_ptr().cast(),
+            values.as_mut_ptr().cast(),
+            c_int::try_from(values.len()).unwrap_or(c_int::MAX),
+            &raw const ffi::ompi_mpi_double,
+            &raw const ffi::ompi_mpi_op_sum,
+            ffi::PETSC_COMM_WORLD,
+        );
+    }
+}
+
+/// Rank 0's `path` on every process (a collective call; the other ranks
+/// pass `None`): where they write their pieces of rank 0's results.
+pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
+    use std::os::unix::ffi::{OsStrExt, OsStringExt};
+    ensure_initialized()?;
+    let mut bytes = path.map_or_else(Vec::new, |p| p.as_os_str().as_bytes().to_vec());
+    let mut length = (bytes.len() as u64).to_le_bytes();
+    // SAFETY: MPI is initialised; every process passes buffers of the
+    // broadcast's size (the length first); MPI's default error handler aborts.
+    unsafe {
+        let byte = &raw const ffi::ompi_mpi_byte;
+        ffi::MPI_Bcast(length.as_mut_ptr().cast(), 8, byte, 0, ffi::PETSC_COMM_WORLD);
+        bytes.resize(u64::from_le_bytes(length) as usize, 0);
+        let count = c_int::try_from(bytes.len()).unwrap_or(c_int::MAX);
+        ffi::MPI_Bcast(bytes.as_mut_ptr().cast(), count, byte, 0, ffi::PETSC_COMM_WORLD);
+    }
+    Ok(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
+}
+
+/// `result` on every process when every process has `Ok`; otherwise this
+/// process's error, or on a process that had none an error naming how many
+/// failed (a collective call: a process must not go on alone into PETSc's
+/// collective calls while another stops).
+pub fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
+    let failed = sum_over_processes(f64::from(u8::from(result.is_err())));
+    match result {
+        Ok(_) if failed > 0.0 => Err(NumericalError::Solver(format!(
+            "{failed} other process(es) of this MPI run stopped with an error (printed by \
+             their rank)"
+        ))
+        .into()),
+        result => result,
+    }
+}
+
+/// An error unless PETSc is initialised.
+pub(super) fn ensure_initialized() -> Result<(), Error> {
+    if initialized()? {
+        return Ok(());
+    }
+    Err(NumericalError::Solver(
+        "solver.method = \"petsc\" needs PETSc initialised (dhpd's command line in a \
+         build with the mpi feature does it; a library caller holds a dhpd::mpi::Petsc)"
+            .into(),
+    )
+    .into())
+}
