@@ -53,7 +53,7 @@ def main(out):
 
     result = {
         "points": summary["counts"]["points"],
-        "solver": summary["counts"]["solver"],
+        "nnz_l": summary["counts"]["nnz_l"],
         "elastic_stiffness_N_per_m": elastic,
         "fem_3d_stiffness_N_per_m": fem3d["k_N_per_m"],
         "first_break_opening_mm": 1e3 * opening[first],
