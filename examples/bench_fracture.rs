@@ -5,6 +5,7 @@
 //! cargo run --release --example bench_fracture -- bond_based 140 event        # ~40,000 points
 //! cargo run --release --example bench_fracture -- bond_based 140 all 100
 //! cargo run --release --example bench_fracture -- shear 100 event             # ~20,000 points
+//! cargo run --release --example bench_fracture -- shear 100 all 100 lu        # [solver] method
 //! ```
 //!
 //! Prints the points and bonds, the median time of a solve with a fresh
@@ -14,8 +15,10 @@
 
 use dhpd::drivers::quasi_static::{self};
 use dhpd::drivers::static_solve;
+use dhpd::scene::{parse_spec, Scene};
 use dhpd::solve::pipeline::Route;
 use dhpd::validation::fracture::Sent;
+use std::path::Path;
 use std::time::Instant;
 
 fn median(mut v: Vec<f64>) -> f64 {
@@ -50,7 +53,15 @@ fn main() {
         let steps: usize = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(100);
         case.stepping = format!("steps = {steps}");
     }
-    let scene = case.scene();
+    // An optional fifth argument sets `[solver] method` (the route's default otherwise).
+    let scene = match args.get(4) {
+        None => case.scene(),
+        Some(method) => {
+            let text = format!("{}\n[solver]\nmethod = \"{method}\"\n", case.toml());
+            let spec = parse_spec(&text, false).expect("the scene parses");
+            Scene::try_from_spec(spec, Path::new("."), "sent").expect("the scene is valid")
+        }
+    };
     let start = Instant::now();
     let prepared = static_solve::prepare(&scene).expect("the scene prepares");
     let (points, bonds) = (prepared.disc.points.len(), prepared.disc.bonds.len());

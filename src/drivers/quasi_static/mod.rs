@@ -41,7 +41,10 @@
 //!   that carries an applied load ends the run (the body has failed);
 //! - complete separation (every reaction below `1e-6` of its peak) ends the
 //!   run, reporting the step; so does `stop_after_peak`, once every reaction
-//!   has fallen below that fraction of its peak.
+//!   has fallen below that fraction of its peak. A load step checks it after
+//!   every re-solve: once past it, the rest of the step (more bonds breaking
+//!   at the same grip displacement) can only lower the reactions further, so
+//!   the run ends there and records the step as [`StateKind::Unsettled`].
 //!
 //! **Solves** (module docs of [`crate::solve::pipeline`]): one at λ = 1 per
 //! bond set. The first factorises; after bonds break only the stiffness
@@ -94,6 +97,11 @@ pub enum StateKind {
     Critical,
     /// `event`: the same load factor after breaking and re-solving.
     Broken,
+    /// `all` / `most_critical`: a load step that ended before no bond was over
+    /// its critical value: every reaction fell below `stop_after_peak` of its
+    /// peak while bonds were still breaking (breaking more at the same grip
+    /// displacement only lowers the reactions), or `max_resolves` was reached.
+    Unsettled,
 }
 
 /// One row of `load_displacement.csv`.

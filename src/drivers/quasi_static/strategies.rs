@@ -93,11 +93,15 @@ impl Run<'_> {
             load_factor = target;
             let first_solve = self.solves.len();
             let broken_before = self.broken_total;
-            let outcome = self.break_until_settled(step, load_factor)?;
+            let (outcome, settled) = self.break_until_settled(step, load_factor)?;
             let solves = self.solves[first_solve..].to_vec();
             let record = self.record(
                 step,
-                StateKind::Equilibrium,
+                if settled {
+                    StateKind::Equilibrium
+                } else {
+                    StateKind::Unsettled
+                },
                 load_factor,
                 self.broken_total - broken_before,
                 &solves,
@@ -128,18 +132,30 @@ impl Run<'_> {
     /// At load step `step`, breaks the bonds over their critical value
     /// (`all`; `most_critical`: those within `tolerance` of the largest) and
     /// re-solves, until none is over (or `max_resolves`, logged). Returns an
-    /// outcome when the run must end.
+    /// outcome when the run must end, and whether the step settled (no bond
+    /// left over its critical value).
+    ///
+    /// The reactions are checked against `stop_after_peak` after every
+    /// re-solve: at a fixed grip displacement a broken bond only softens the
+    /// body, so once every reaction is below the fraction of its peak it stays
+    /// there for the rest of the step, and the run ends without growing the
+    /// crack further (the record says the step did not settle).
     fn break_until_settled(
         &mut self,
         step: usize,
         load_factor: f64,
-    ) -> Result<Option<Outcome>, Error> {
+    ) -> Result<(Option<Outcome>, bool), Error> {
         let mut resolves = 0;
         loop {
             self.update_ratios(load_factor);
             let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
             if largest < 1.0 {
-                return Ok(None);
+                return Ok((None, true));
+            }
+            if resolves > 0 {
+                if let Some(outcome @ Outcome::PastPeak { .. }) = self.ended(step, load_factor) {
+                    return Ok((Some(outcome), false));
+                }
             }
             if resolves == self.settings.max_resolves {
                 self.log.push(format!(
@@ -147,7 +163,7 @@ impl Run<'_> {
                      re-solves with bonds still over their critical value",
                     self.settings.max_resolves
                 ));
-                return Ok(None);
+                return Ok((None, false));
             }
             let threshold = match self.settings.strategy {
                 Strategy::MostCritical => (1.0 - self.settings.tolerance) * largest,
@@ -164,7 +180,8 @@ impl Run<'_> {
             resolves += 1;
             let outcome = self.settle(step, load_factor)?;
             if outcome.is_some() || self.separated() {
-                return Ok(outcome);
+                let settled = outcome.is_none();
+                return Ok((outcome, settled));
             }
         }
     }
