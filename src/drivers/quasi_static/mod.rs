@@ -296,7 +296,12 @@ struct Run<'s> {
     earlier: Option<Vec<f64>>,
     /// How the event strategy's rankings were decided.
     ranking: RankingStats,
+    /// Largest reaction magnitude so far, including what a step's old bonds
+    /// carried at its load factor before they broke (the separation test).
     peak_reaction: f64,
+    /// Largest reaction magnitude of the recorded states (`stop_after_peak`:
+    /// the peak the records and the summary report).
+    recorded_peak: f64,
     reference_displacement: f64,
     solves: Vec<ResolveRecord>,
     log: Vec<String>,
@@ -415,6 +420,7 @@ impl<'s> Run<'s> {
             earlier: None,
             ranking: RankingStats::default(),
             peak_reaction: 0.0,
+            recorded_peak: 0.0,
             reference_displacement,
             solves: Vec::new(),
             log: Vec::new(),

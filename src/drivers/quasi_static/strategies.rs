@@ -211,6 +211,10 @@ impl Run<'_> {
             .map(|r| r.force.map(|f| load_factor * f))
             .collect();
         self.note_peak(load_factor);
+        self.recorded_peak = reactions
+            .iter()
+            .map(crate::vector::magnitude)
+            .fold(self.recorded_peak, f64::max);
         use crate::solve::pipeline::Route;
         let routes: Vec<&str> = [Route::Factor, Route::Update, Route::Reuse]
             .into_iter()
@@ -282,8 +286,9 @@ impl Run<'_> {
         })
     }
 
-    /// Whether the run ends after this state: separated, or past the peak as
-    /// `stop_after_peak` asks (`load_factor`: that of the state just recorded).
+    /// Whether the run ends after this state: separated, or past the peak of
+    /// the recorded states as `stop_after_peak` asks (`load_factor`: that of
+    /// the current bonds' state).
     pub(super) fn ended(&self, step: usize, load_factor: f64) -> Option<Outcome> {
         if self.separated() {
             return Some(Outcome::Separated { step });
@@ -294,7 +299,7 @@ impl Run<'_> {
             .iter()
             .map(|r| load_factor * crate::vector::magnitude(&r.force))
             .fold(0.0, f64::max);
-        (self.peak_reaction > 0.0 && largest < fraction * self.peak_reaction)
+        (self.recorded_peak > 0.0 && largest < fraction * self.recorded_peak)
             .then_some(Outcome::PastPeak { step })
     }
 
