@@ -201,6 +201,9 @@ pub struct Pipeline {
     /// above it in all (s): the part of their cost that grows with the terms.
     update_floor: f64,
     update_excess: f64,
+    /// The tolerance of Krylov re-solves when the driver asks for a looser
+    /// one than [`GMRES_TOLERANCE`] ([`Pipeline::set_resolve_tolerance`]).
+    resolve_tolerance: Option<f64>,
     /// Symbolic analysis time (s).
     pub symbolic_seconds: f64,
     /// The Cholesky factor's ordering (None for LU).
@@ -252,6 +255,7 @@ impl Pipeline {
             refactor_next: false,
             update_floor: f64::INFINITY,
             update_excess: 0.0,
+            resolve_tolerance: None,
             symbolic_seconds: t.elapsed().as_secs_f64(),
             ordering: chosen.ordering,
         })
@@ -807,9 +811,9 @@ impl Pipeline {
             return self.solve(layout, m, rhs, notes);
         }
         let cap = self.refactor_threshold();
-        // A re-solve aims at the usual tolerance, or at the round-off floor that
-        // the fresh solve of this system reached if that is higher.
-        let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
+        let tolerance = self
+            .resolve_tolerance
+            .map_or(self.full_tolerance(), |t| t.max(self.full_tolerance()));
         let t = Instant::now();
         let mut x = x0.to_vec();
         let (report, earlier) = self.krylov(m.k, rhs, &mut x, tolerance, cap);
@@ -880,19 +884,40 @@ impl Pipeline {
         (run, earlier)
     }
 
+    /// The relative residual a re-solve aims at by default: the usual
+    /// tolerance, or the round-off floor that the fresh solve of this system
+    /// reached if that is higher.
+    pub fn full_tolerance(&self) -> f64 {
+        GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual)
+    }
+
+    /// Lets Krylov re-solves stop at the relative residual `tolerance`
+    /// (`None`: [`Pipeline::full_tolerance`]): for a driver that checks the
+    /// decisions it takes from the answer against the answer's error
+    /// ([`Solved::earlier`]) and improves it where they are not decided.
+    pub fn set_resolve_tolerance(&mut self, tolerance: Option<f64>) {
+        self.resolve_tolerance = tolerance;
+    }
+
     /// Improves a re-solve's `x` by Krylov iterations with the current
-    /// preconditioner until its residual is [`CHECKPOINT_FACTOR`] times
-    /// smaller (`K` and `rhs` unchanged): the event strategy's tighter solve
-    /// when the bonds' ratios are too close to decide which are critical.
-    /// `None` when no preconditioner is at hand or the iteration made no
-    /// progress (the round-off floor).
-    pub fn improve(&mut self, m: Matrices, rhs: &[f64], x: &[f64]) -> Option<Solved> {
+    /// preconditioner until its residual is `target` or, without one,
+    /// [`CHECKPOINT_FACTOR`] times smaller (`K` and `rhs` unchanged): the
+    /// tighter solve when the bonds' ratios are too close to decide which are
+    /// critical. `None` when no preconditioner is at hand or the iteration
+    /// made no progress (the round-off floor).
+    pub fn improve(
+        &mut self,
+        m: Matrices,
+        rhs: &[f64],
+        x: &[f64],
+        target: Option<f64>,
+    ) -> Option<Solved> {
         if !self.factored {
             return None;
         }
         let t = Instant::now();
         let before = relative_residual(&self.product(m.k, x), rhs);
-        let tolerance = before / CHECKPOINT_FACTOR;
+        let tolerance = target.unwrap_or(before / CHECKPOINT_FACTOR);
         let mut improved = x.to_vec();
         let (run, _) = self.krylov(m.k, rhs, &mut improved, tolerance, self.refactor_threshold());
         let report = run.krylov;
@@ -972,6 +997,17 @@ impl Pipeline {
         terms: Vec<Term>,
         notes: &mut Notes,
     ) -> Result<Solved, Error> {
+        if let (Factor::Cholesky(c), Source::Surrogate, true) =
+            (&self.factor, self.source, self.factored)
+        {
+            // The preconditioner follows the surrogate's broken bonds exactly.
+            if let Some(llt) = c.double_factor() {
+                if self.low_rank.bytes() <= UPDATE_MEMORY.max(llt.nnz() * 8) {
+                    let _ = self.low_rank.extend(terms, llt);
+                }
+            }
+            return self.resolve(layout, m, rhs, x0, notes);
+        }
         let llt = match (&self.factor, self.source, self.factored) {
             (Factor::Cholesky(c), Source::Matrix, true) if self.symmetric => c.double_factor(),
             _ => None,
@@ -998,7 +1034,7 @@ impl Pipeline {
         let x = self.low_rank.apply(llt, c);
         let residual = relative_residual(&self.product(m.k, &x), rhs);
         let elapsed = t.elapsed().as_secs_f64();
-        let tolerance = GMRES_TOLERANCE.max(10.0 * self.costs.fresh_residual);
+        let tolerance = self.full_tolerance();
         if !(residual <= tolerance && x.iter().all(|v| v.is_finite())) {
             let mut fallback = self.resolve(layout, m, rhs, &x, notes)?;
             fallback.report.solve_seconds += elapsed;

@@ -218,7 +218,8 @@ pub struct QuasiStaticSolution {
     pub calibration: CalibrationReport,
     /// How the run ended.
     pub outcome: Outcome,
-    /// `event`: how the rankings after Krylov re-solves were decided.
+    /// How the decisions after Krylov re-solves were made (`event`: the
+    /// rankings; `all`: the bonds over their critical value).
     pub ranking: RankingStats,
     /// Setup time per phase.
     pub timings: Timings,
@@ -294,7 +295,7 @@ struct Run<'s> {
     solve_rhs: Vec<f64>,
     /// The last Krylov solve's checkpoint iterate ([`Solved::earlier`]).
     earlier: Option<Vec<f64>>,
-    /// How the event strategy's rankings were decided.
+    /// How the decisions after Krylov re-solves were made.
     ranking: RankingStats,
     /// Largest reaction magnitude so far, including what a step's old bonds
     /// carried at its load factor before they broke (the separation test).

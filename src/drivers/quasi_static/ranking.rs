@@ -26,13 +26,30 @@
 //! decided at round-off (ties within τ break together by construction).
 //! Checked in `tests/fracture.rs`: the iterative and direct routes
 //! break the same bonds at the same events on a notched plate.
+//!
+//! **The `all` strategy** breaks every bond over its critical value at the
+//! step's load factor λ, `λ r_b ≥ 1`, and re-solves until none is. Its
+//! intermediate re-solves (those after which bonds break again) serve only
+//! that decision, so on a Krylov route they stop at the looser relative
+//! residual [`INTERMEDIATE_TOLERANCE`] and the decision is checked instead:
+//! bond `b` is surely over when `λ (r̃_b − η_b) ≥ 1` and surely under when
+//! `λ (r̃_b + η_b) < 1`, the solution improved as above until every bond is
+//! one or the other. The state a step ends in (settled, or past
+//! `stop_after_peak`) is improved to the full tolerance before it is checked
+//! again and recorded, so every recorded state is as accurate as before.
 
 use super::*;
+
+/// Relative residual of the `all` strategy's intermediate Krylov re-solves
+/// (module docs): four orders of magnitude above the full tolerance, the
+/// decisions checked against the error.
+pub(super) const INTERMEDIATE_TOLERANCE: f64 = 1e-8;
 
 /// Rounds of tighter re-solves spent on one undecided ranking.
 pub(super) const MAX_TIGHTENING: usize = 4;
 
-/// How the event strategy's rankings were decided.
+/// How the decisions taken after Krylov re-solves were made (the event
+/// strategy's rankings; the `all` strategy's bonds over their critical value).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
 pub struct RankingStats {
     /// Rankings that followed a Krylov re-solve (and so were checked).
@@ -49,6 +66,28 @@ impl Run<'_> {
     /// docs): after a Krylov re-solve, improves the solution until they do.
     /// The tighter re-solves are recorded at `step`.
     pub(super) fn decide_ranking(&mut self, step: usize) {
+        let tolerance = self.settings.tolerance;
+        self.decide(step, 1.0, |ratios, estimate| {
+            decided(ratios, estimate, tolerance)
+        });
+    }
+
+    /// The `all` strategy's decision at `load_factor` (module docs): every
+    /// bond surely over its critical value (`λ (r̃_b − η_b) ≥ 1`) or surely
+    /// under it (`λ (r̃_b + η_b) < 1`); improves the solution until it is.
+    pub(super) fn decide_threshold(&mut self, step: usize, load_factor: f64) {
+        self.decide(step, load_factor, decided_threshold);
+    }
+
+    /// Improves the solution of the last Krylov re-solve until `decided(ratios,
+    /// estimate)` holds for the ratios at `load_factor` of the solution and of
+    /// the estimate of its error; counted in [`RankingStats`].
+    fn decide(
+        &mut self,
+        step: usize,
+        load_factor: f64,
+        decided: impl Fn(&[f64], &[f64]) -> bool,
+    ) {
         let earlier = self.earlier.take();
         let krylov = self.solves.last().is_some_and(|s| s.report.iterations > 0);
         if !krylov {
@@ -58,8 +97,8 @@ impl Run<'_> {
         let mut earlier = earlier;
         for round in 0..=MAX_TIGHTENING {
             if let Some(e) = earlier.take() {
-                let estimate = self.ratios_of(&e);
-                if decided(&self.ratios, &estimate, self.settings.tolerance) {
+                let estimate = self.ratios_of(&e).into_iter().map(|r| r * load_factor);
+                if decided(&self.ratios, &estimate.collect::<Vec<_>>()) {
                     if round > 0 {
                         self.ranking.tightened += 1;
                     }
@@ -69,23 +108,36 @@ impl Run<'_> {
                     break;
                 }
             }
-            let (pipeline, m) = self.system.parts();
-            let Some(improved) = pipeline.improve(m, &self.solve_rhs, &self.x) else {
-                break;
-            };
-            earlier = improved.earlier;
-            self.x = improved.x;
-            let u = self.unit_displacement();
-            self.unit_reactions =
-                reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
-            self.solves.push(ResolveRecord {
-                step,
-                bonds_broken: 0,
-                report: improved.report,
-            });
-            self.update_ratios(1.0);
+            match self.improve_solution(step, None) {
+                Some(e) => earlier = e,
+                None => break,
+            }
+            self.update_ratios(load_factor);
         }
         self.ranking.undecided += 1;
+    }
+
+    /// Improves the current solution by Krylov iterations to the relative
+    /// residual `target` (`None`: [`crate::solve::pipeline::CHECKPOINT_FACTOR`]
+    /// times smaller), recorded as a solve at `step`; the reactions follow.
+    /// Returns the previous solution (the new error estimate), or `None` when
+    /// no improvement was possible.
+    pub(super) fn improve_solution(
+        &mut self,
+        step: usize,
+        target: Option<f64>,
+    ) -> Option<Option<Vec<f64>>> {
+        let (pipeline, m) = self.system.parts();
+        let improved = pipeline.improve(m, &self.solve_rhs, &self.x, target)?;
+        self.x = improved.x;
+        let u = self.unit_displacement();
+        self.unit_reactions = reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
+        self.solves.push(ResolveRecord {
+            step,
+            bonds_broken: 0,
+            report: improved.report,
+        });
+        Some(improved.earlier)
     }
 
     /// The ratios at λ = 1 of the free unknowns `x`.
@@ -115,9 +167,19 @@ fn decided(ratios: &[f64], estimate: &[f64], tau: f64) -> bool {
     })
 }
 
+/// Whether every bond is surely over its critical value or surely under it
+/// (`ratios` and `estimate` at the step's load factor, errors
+/// `|ratios − estimate|`). Bonds whose ratio is zero take no part.
+fn decided_threshold(ratios: &[f64], estimate: &[f64]) -> bool {
+    ratios.iter().zip(estimate).all(|(&r, &e)| {
+        let error = (r - e).abs();
+        r == 0.0 || r - error >= 1.0 || r + error < 1.0
+    })
+}
+
 #[cfg(test)]
 mod tests {
-    use super::decided;
+    use super::{decided, decided_threshold};
 
     /// Two bonds a relative 1e-5 apart, tolerance 1e-6: decided while the
     /// errors are far below the gap, undecided once they reach it; a bond tied
@@ -134,5 +196,18 @@ mod tests {
         assert!(!decided(&tied, &tied.map(|r| r - 1e-6), 1e-6));
         // The exact answer (no error) is always decided.
         assert!(decided(&ratios, &ratios, 1e-6));
+    }
+
+    /// A bond 1e-6 below its critical value is decided while the error is
+    /// smaller than that, and undecided once it reaches it; so is one above.
+    #[test]
+    fn a_threshold_is_decided_only_beyond_its_errors() {
+        let ratios = [1.0 - 1e-6, 1.0 + 1e-6, 0.3, 0.0];
+        let off = |e: f64| ratios.map(|r| if r > 0.0 { r + e } else { r });
+        assert!(decided_threshold(&ratios, &off(1e-7)));
+        assert!(decided_threshold(&ratios, &off(-1e-7)));
+        assert!(!decided_threshold(&ratios, &off(2e-6)));
+        assert!(!decided_threshold(&ratios, &off(-2e-6)));
+        assert!(decided_threshold(&ratios, &ratios));
     }
 }

@@ -46,7 +46,12 @@ impl Run<'_> {
         for &b in &self.recent {
             let owner = bonds.offsets.partition_point(|&o| o <= b) - 1;
             let j = bonds.neighbour[b] as usize;
-            let (k, e) = self.model.bond_stiffness(&self.disc, owner, b)?;
+            // The model's own term, or the bond-based surrogate's (its factor
+            // preconditions the shear model's re-solves).
+            let (k, e) = match &self.system.surrogate {
+                Some((surrogate, _)) => surrogate.bond_stiffness(&self.disc, owner, b)?,
+                None => self.model.bond_stiffness(&self.disc, owner, b)?,
+            };
             // Oriented from the lower to the higher point index.
             let (key, e) = if owner < j {
                 ((owner, j), e)

@@ -2,6 +2,7 @@
 //! event loop, the stepped loop, the ratios of every bond at a load factor, the
 //! records and the end of a run.
 
+use super::ranking::INTERMEDIATE_TOLERANCE;
 use super::*;
 
 impl Run<'_> {
@@ -145,17 +146,33 @@ impl Run<'_> {
         step: usize,
         load_factor: f64,
     ) -> Result<(Option<Outcome>, bool), Error> {
+        // `all` re-solves to a looser tolerance between breaks and checks its
+        // decisions against the error (module docs of `ranking`).
+        let loose = self.settings.strategy == Strategy::All;
         let mut resolves = 0;
+        // Whether the current solution is such an intermediate re-solve's.
+        let mut intermediate = false;
         loop {
             self.update_ratios(load_factor);
+            if intermediate {
+                self.decide_threshold(step, load_factor);
+            }
             let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
+            let past = (resolves > 0)
+                .then(|| self.ended(step, load_factor))
+                .flatten()
+                .filter(|o| matches!(o, Outcome::PastPeak { .. }));
+            if intermediate && (largest < 1.0 || past.is_some()) {
+                // The state the step ends in: to the full tolerance, decided again.
+                self.complete_solution(step);
+                intermediate = false;
+                continue;
+            }
             if largest < 1.0 {
                 return Ok((None, true));
             }
-            if resolves > 0 {
-                if let Some(outcome @ Outcome::PastPeak { .. }) = self.ended(step, load_factor) {
-                    return Ok((Some(outcome), false));
-                }
+            if past.is_some() {
+                return Ok((past, false));
             }
             if resolves == self.settings.max_resolves {
                 self.log.push(format!(
@@ -178,12 +195,27 @@ impl Run<'_> {
             self.note_peak(load_factor);
             self.break_bonds(&chosen);
             resolves += 1;
-            let outcome = self.settle(step, load_factor)?;
+            let pipeline = &mut self.system.pipeline;
+            pipeline.set_resolve_tolerance(loose.then_some(INTERMEDIATE_TOLERANCE));
+            let outcome = self.settle(step, load_factor);
+            self.system.pipeline.set_resolve_tolerance(None);
+            let outcome = outcome?;
+            intermediate = loose && self.solves.last().is_some_and(|s| s.report.iterations > 0);
             if outcome.is_some() || self.separated() {
+                if intermediate {
+                    self.complete_solution(step);
+                }
                 let settled = outcome.is_none();
                 return Ok((outcome, settled));
             }
         }
+    }
+
+    /// Improves an intermediate re-solve's solution to the full tolerance
+    /// (a state that will be recorded).
+    fn complete_solution(&mut self, step: usize) {
+        let target = self.system.pipeline.full_tolerance();
+        let _ = self.improve_solution(step, Some(target));
     }
 
     /// The ratio of every bond at `load_factor` for the current bonds.

@@ -3,7 +3,8 @@
 
 Setup (the geometry of dhpd's 3D notched bar):
   body x in [0, W], y in [-L/2, L/2], z in [0, T]; W = 0.1 m, L = 0.2 m
-  (free length between the grips), depths T = 0.02, 0.03, 0.04 m;
+  (free length between the grips), depths T = 0.02, 0.03, 0.04 m (others with
+  --depths: 0.01 m for the thin bar of issue 19, reference_sent3d_thin.json);
   E = 30 GPa, linear elastic isotropic, small strain, nu = 1/4 and 1/3;
   through crack on y = 0 from x = 0 to x = a = 0.05 m (a/W = 0.5) over the
   whole depth (straight front along z at x = a), traction-free faces;
@@ -381,7 +382,10 @@ def main():
     ap.add_argument("--conv-level", type=int, default=0, help="coarser level for the convergence check")
     ap.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)),
                                                   "reference_sent3d.json"))
+    ap.add_argument("--depths", type=float, nargs="+", default=DEPTHS,
+                    help="bar depths T [m] (the first also for the checks)")
     args = ap.parse_args()
+    depths = args.depths
     T0 = time.time()
     print(f"3D SENT bar, W={W} L={L} a={A_CRACK} E={E:.3g}; clamped grips; quarter model; per unit Delta")
     print(f"python {platform.python_version()}, skfem {skfem.__version__}, numpy {np.__version__}, scipy {scipy.__version__}")
@@ -389,7 +393,7 @@ def main():
     b2 = bounds_2d()
 
     print(f"\n== plane-strain check (u_z = 0 on z = 0 and z = T/2), level {args.level}")
-    pe = run_mesh(args.level, DEPTHS[0], NUS, plane_strain=True)
+    pe = run_mesh(args.level, depths[0], NUS, plane_strain=True)
     for key, _ in NUS:
         ref = b2[f"plane_strain_{key}"]
         r = pe[key]
@@ -402,13 +406,13 @@ def main():
 
     print(f"\n== 3D bar, free faces, level {args.level}")
     res = {}
-    for T in DEPTHS:
+    for T in depths:
         res[f"T_{T}"] = run_mesh(args.level, T, NUS)
 
-    print(f"\n== mesh convergence at T = {DEPTHS[0]}: level {args.conv_level} vs {args.level}")
-    conv = run_mesh(args.conv_level, DEPTHS[0], NUS)
+    print(f"\n== mesh convergence at T = {depths[0]}: level {args.conv_level} vs {args.level}")
+    conv = run_mesh(args.conv_level, depths[0], NUS)
     for key, _ in NUS:
-        f, c = res[f"T_{DEPTHS[0]}"][key], conv[key]
+        f, c = res[f"T_{depths[0]}"][key], conv[key]
         print(f"    {key}: level {args.conv_level} -> {args.level}: P {f['P_per_unit_delta'] / c['P_per_unit_delta'] - 1:+.2e}, "
               f"G_J {f['G_J'] / c['G_J'] - 1:+.2e}, G_compl {f['G_compliance'] / c['G_compliance'] - 1:+.2e}, "
               f"P_c {f['P_c_per_depth'] / c['P_c_per_depth'] - 1:+.2e}")
@@ -418,7 +422,7 @@ def main():
           "G(z=0)/G_avg G(T/2)/G_avg  vs PS    vs PE   between")
     for key, nu in NUS:
         ps, pe2 = b2[f"plane_stress_{key}"]["P_c_per_depth"], b2[f"plane_strain_{key}"]["P_c_per_depth"]
-        for T in DEPTHS:
+        for T in depths:
             r = res[f"T_{T}"][key]
             pc = r["P_c_per_depth"]
             r["between_plane_stress_and_strain"] = bool(min(ps, pe2) < pc < max(ps, pe2))
@@ -429,13 +433,13 @@ def main():
                   f"{r['rel_diff_G_compliance_vs_J']:+.1e}  {pc / 1e3:.2f}  {r['delta_c']:.5e}  {gz[0]:.4f}       "
                   f"{gz[-1]:.4f}       {r['vs_plane_stress']:+.2%}  {r['vs_plane_strain']:+.2%}  {r['between_plane_stress_and_strain']}")
         print(f" {key} plane stress {ps / 1e3:.2f} kN/m, plane strain {pe2 / 1e3:.2f} kN/m (2D, level 1)")
-    dmax = max(abs(res[f"T_{T}"][k]["rel_diff_G_compliance_vs_J"]) for T in DEPTHS for k, _ in NUS)
+    dmax = max(abs(res[f"T_{T}"][k]["rel_diff_G_compliance_vs_J"]) for T in depths for k, _ in NUS)
     print(f" max |G_compliance/G_J - 1| over the 3D cases = {dmax:.1e}")
 
     out = dict(
         description="LEFM reference for the clamped 3D SENT bar (through crack a/W = 0.5), scikit-fem P2 "
                     "tetrahedra, quarter model; dhpd validation/fracture problem E",
-        inputs=dict(W=W, L=L, a=A_CRACK, depths=DEPTHS, E=E, nus=dict(NUS), G0=G0,
+        inputs=dict(W=W, L=L, a=A_CRACK, depths=depths, E=E, nus=dict(NUS), G0=G0,
                     grips="clamped: face y=-L/2 u=(0,0,0); face y=+L/2 u=(0,Delta,0); faces x=0, x=W, z=0, z=T free",
                     units="SI; all values per unit grip displacement Delta = 1 m; P_c_per_depth in N/m",
                     model="quarter y>=0, z in [0,T/2]: top u=(0,1/2,0), ligament u_y=0, mid-plane u_z=0; "
@@ -453,7 +457,7 @@ def main():
             plane_stress_nu_1_3_P_c=476.38e3, plane_stress_nu_1_4_P_c=476.03e3, plane_strain_nu_1_4_P_c=492.00e3),
         plane_strain_check=pe,
         results=res,
-        convergence=dict(level_coarse=conv, level_main={k: res[f"T_{DEPTHS[0]}"][k] for k, _ in NUS}),
+        convergence=dict(level_coarse=conv, level_main={k: res[f"T_{depths[0]}"][k] for k, _ in NUS}),
         runtime_s=time.time() - T0,
     )
     with open(args.out, "w") as fh:
