@@ -128,7 +128,9 @@ pub struct StepRecord {
     pub route: String,
     /// Krylov iterations of the step's solves.
     pub iterations: usize,
-    /// Largest relative residual of the step's solves (0 without a solve).
+    /// Relative residual of the solve of the recorded state: the step's last
+    /// (0 without a solve; the `all` strategy's intermediate re-solves stop
+    /// earlier, module docs of `ranking`).
     pub residual: f64,
     /// Wall time since the start of the run (s).
     pub wall_time: f64,

@@ -269,7 +269,7 @@ impl Run<'_> {
             resolves: solves.len(),
             route,
             iterations: solves.iter().map(|s| s.report.iterations).sum(),
-            residual: solves.iter().map(|s| s.report.residual).fold(0.0, f64::max),
+            residual: solves.last().map_or(0.0, |s| s.report.residual),
             wall_time: self.start.elapsed().as_secs_f64(),
         }
     }
