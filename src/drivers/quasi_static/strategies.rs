@@ -162,7 +162,8 @@ impl Run<'_> {
                 .then(|| self.ended(step, load_factor))
                 .flatten()
                 .filter(|o| matches!(o, Outcome::PastPeak { .. }));
-            if intermediate && (largest < 1.0 || past.is_some()) {
+            let last = resolves == self.settings.max_resolves;
+            if intermediate && (largest < 1.0 || past.is_some() || last) {
                 // The state the step ends in: to the full tolerance, decided again.
                 self.complete_solution(step);
                 intermediate = false;
@@ -174,7 +175,7 @@ impl Run<'_> {
             if past.is_some() {
                 return Ok((past, false));
             }
-            if resolves == self.settings.max_resolves {
+            if last {
                 self.log.push(format!(
                     "step {step}: stopped re-solving after quasi_static.max_resolves = {} \
                      re-solves with bonds still over their critical value",
@@ -195,8 +196,7 @@ impl Run<'_> {
             self.note_peak(load_factor);
             self.break_bonds(&chosen);
             resolves += 1;
-            let pipeline = &mut self.system.pipeline;
-            pipeline.set_resolve_tolerance(loose.then_some(INTERMEDIATE_TOLERANCE));
+            (self.system.pipeline).set_resolve_tolerance(loose.then_some(INTERMEDIATE_TOLERANCE));
             let outcome = self.settle(step, load_factor);
             self.system.pipeline.set_resolve_tolerance(None);
             let outcome = outcome?;
