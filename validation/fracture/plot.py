@@ -10,6 +10,11 @@ writes into results/ and the FEM reference in fem/; writes
   error_vs_time.png   peak-load error against run time, both models, three calibrations
   three_d.png         3D notched bars (Sec. 7): reaction per unit depth against grip
                       displacement, with the 3D FEM's critical load
+  three_d_front.png   the 107,520-point bar's crack plane at the end of its run: the damage
+                      next to y = 0 over x (along the ligament) and z (through the depth)
+
+`python3 validation/fracture/plot.py front OUT/points.csv` first extracts that crack plane
+from a run's points.csv into results/front_sent_bond_based_all_n80_m3_3d_depth10mm.csv.
 
 Run from the repository root:  python3 validation/fracture/plot.py
 (matplotlib and numpy; see requirements-plot.txt)
@@ -235,11 +240,59 @@ def plot_three_d():
     finish_curves(fig, ax, "reaction per unit depth [kN/m]", "three_d.png")
 
 
+FRONT = "front_sent_bond_based_all_n80_m3_3d_depth10mm.csv"
+
+
+def extract_front(points_csv):
+    """The damage of the two point layers next to the crack plane y = 0 (the larger of
+    the two at each x, z) from a run's points.csv, into results/FRONT."""
+    damage = {}
+    with open(points_csv) as f:
+        for p in csv.DictReader(f):
+            y = float(p["y"])
+            if abs(y) < 1e-3:  # the layers at y = ±Δx/2 (Δx = 1.25 mm)
+                key = (round(float(p["x"]), 7), round(float(p["z"]), 7))
+                damage[key] = max(damage.get(key, 0.0), float(p["damage"]))
+    with open(os.path.join(RESULTS, FRONT), "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(["x", "z", "damage"])
+        for (x, z), d in sorted(damage.items()):
+            w.writerow([x, z, f"{d:.6f}"])
+
+
+def plot_three_d_front():
+    data = rows(FRONT)
+    if not data:
+        return
+    xs = sorted({float(r["x"]) for r in data})
+    zs = sorted({float(r["z"]) for r in data})
+    grid = [[0.0] * len(xs) for _ in zs]
+    for r in data:
+        grid[zs.index(float(r["z"]))][xs.index(float(r["x"]))] = float(r["damage"])
+    fig, ax = plt.subplots(figsize=(7, 1.9))
+    h = 0.5 * (xs[1] - xs[0])
+    image = ax.imshow(grid, origin="lower", aspect="auto", cmap="magma_r", vmin=0, vmax=1,
+                      extent=(1e3 * (xs[0] - h), 1e3 * (xs[-1] + h),
+                              1e3 * (zs[0] - h), 1e3 * (zs[-1] + h)))
+    ax.axvline(50.0, color="w", lw=0.8, ls="--")
+    ax.set_xlabel("x [mm] (notch tip at 50 mm)")
+    ax.set_ylabel("z [mm]")
+    ax.set_title("3D bar, 107,520 points: damage next to the crack plane at 90 % past the peak",
+                 fontsize=8)
+    fig.colorbar(image, ax=ax, label="damage")
+    fig.tight_layout()
+    fig.savefig(os.path.join(HERE, "three_d_front.png"), dpi=120)
+
+
 if __name__ == "__main__":
+    import sys
+    if len(sys.argv) == 3 and sys.argv[1] == "front":
+        extract_front(sys.argv[2])
     plot_lefm()
     plot_curves()
     plot_damage()
     plot_kink()
     plot_error_vs_time()
     plot_three_d()
+    plot_three_d_front()
     print("figures written to", HERE)
