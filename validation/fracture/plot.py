@@ -221,6 +221,8 @@ THREE_D = (
     ("curve_sent_shear_event_n20_m3_continuum_3d.csv", "shear (continuum), W/20, T = 20 mm", 0.02),
     ("curve_sent_bond_based_all_n80_m3_3d_depth10mm.csv",
      "bond-based, W/80, T = 10 mm (107,520 points, all)", 0.01),
+    ("curve_sent_bond_based_all_n50_m3_3d_depth40mm.csv",
+     "bond-based, W/50, T = 40 mm (120,000 points, all)", 0.04),
 )
 
 
