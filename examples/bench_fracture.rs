@@ -70,10 +70,13 @@ fn main() {
     let total = start.elapsed().as_secs_f64();
     // A re-solve follows broken bonds; the solves that break none improve a
     // re-solve's answer (tighter decisions, a step's final state), listed apart.
+    let counted = |x: &&quasi_static::ResolveRecord, route: Route| {
+        x.report.route == route && (x.bonds_broken > 0 || route == Route::Factor)
+    };
     let times = |route: Route| -> Vec<f64> {
         s.solves
             .iter()
-            .filter(|x| x.report.route == route && (x.bonds_broken > 0 || route == Route::Factor))
+            .filter(|x| counted(x, route))
             .map(|x| x.report.factor_seconds + x.report.solve_seconds)
             .collect()
     };
@@ -91,7 +94,7 @@ fn main() {
     let iterations = |route: Route| -> Vec<f64> {
         s.solves
             .iter()
-            .filter(|x| x.report.route == route && (x.bonds_broken > 0 || route == Route::Factor))
+            .filter(|x| counted(x, route))
             .map(|x| x.report.iterations as f64)
             .collect()
     };

@@ -815,9 +815,7 @@ impl Pipeline {
             return self.solve(layout, m, rhs, notes);
         }
         let cap = self.refactor_threshold();
-        let tolerance = self
-            .resolve_tolerance
-            .map_or(self.full_tolerance(), |t| t.max(self.full_tolerance()));
+        let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
         let t = Instant::now();
         let mut x = x0.to_vec();
         let (report, earlier) = self.krylov(m.k, rhs, &mut x, tolerance, cap);

@@ -97,9 +97,9 @@ pub enum StateKind {
     Critical,
     /// `event`: the same load factor after breaking and re-solving.
     Broken,
-    /// `all` / `most_critical`: a load step that ended before no bond was over
-    /// its critical value: every reaction fell below `stop_after_peak` of its
-    /// peak while bonds were still breaking (breaking more at the same grip
+    /// `all` / `most_critical`: a load step that ended with bonds still over
+    /// their critical value: every reaction fell below `stop_after_peak` of its
+    /// peak while bonds were breaking (breaking more at the same grip
     /// displacement only lowers the reactions), or `max_resolves` was reached.
     Unsettled,
 }

@@ -97,8 +97,9 @@ impl Run<'_> {
         let mut earlier = earlier;
         for round in 0..=MAX_TIGHTENING {
             if let Some(e) = earlier.take() {
-                let estimate = self.ratios_of(&e).into_iter().map(|r| r * load_factor);
-                if decided(&self.ratios, &estimate.collect::<Vec<_>>()) {
+                let estimate: Vec<f64> =
+                    self.ratios_of(&e).iter().map(|r| r * load_factor).collect();
+                if decided(&self.ratios, &estimate) {
                     if round > 0 {
                         self.ranking.tightened += 1;
                     }

@@ -196,7 +196,8 @@ impl Run<'_> {
             self.note_peak(load_factor);
             self.break_bonds(&chosen);
             resolves += 1;
-            (self.system.pipeline).set_resolve_tolerance(loose.then_some(INTERMEDIATE_TOLERANCE));
+            let tolerance = loose.then_some(INTERMEDIATE_TOLERANCE);
+            self.system.pipeline.set_resolve_tolerance(tolerance);
             let outcome = self.settle(step, load_factor);
             self.system.pipeline.set_resolve_tolerance(None);
             let outcome = outcome?;
