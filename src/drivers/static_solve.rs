@@ -3,7 +3,7 @@
 //! set (and, when the scene asks, the recovered stress).
 
 use super::setup::{Plan, Setup, Timings};
-use super::system::{check_range, reactions, right_hand_side, Reaction, System};
+use super::system::{agreed, check_range, reactions, right_hand_side, Reaction, System};
 use super::{forward, Observer};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::forces::internal_forces;
@@ -211,13 +211,7 @@ fn solve_with(
         &disc,
         None,
     );
-    // Each process of a distributed solve checks its own columns; all stop together.
-    #[cfg(feature = "mpi")]
-    let in_range = match scene.solver.method {
-        SolverMethod::Petsc => crate::solve::petsc::on_every_process(in_range),
-        _ => in_range,
-    };
-    in_range?;
+    agreed(&scene.solver, in_range)?;
     let asymmetry = system
         .pipeline
         .asymmetry(&system.stiffness, super::system::layout(&disc, &dofs))?;

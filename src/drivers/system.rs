@@ -96,6 +96,18 @@ impl System {
     }
 }
 
+/// A check that each process of the `petsc` route makes on its own columns
+/// of `K`, made every process's (an error on one stops all of them, none
+/// going on alone into PETSc's collective calls); as it is on other routes.
+pub fn agreed<T>(settings: &SolverSettings, result: Result<T, Error>) -> Result<T, Error> {
+    #[cfg(feature = "mpi")]
+    if settings.method == SolverMethod::Petsc {
+        return crate::solve::petsc::on_every_process(result);
+    }
+    let _ = settings;
+    result
+}
+
 /// The pattern of `K`: whole, or on the `petsc` route the columns this
 /// process assembles (`solve::petsc::assembled_columns`: its own points and
 /// their ghosts).

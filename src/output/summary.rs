@@ -204,13 +204,7 @@ pub fn write_quasi_static(
         model: format!("{:?} {:?}", scene.model.kind, scene.model.dimension),
         strategy,
         outcome: &s.outcome,
-        counts: serde_json::json!({
-            "points": s.disc.points.len(),
-            "bonds": s.bonds,
-            "dofs": s.dofs_free,
-            "nnz_k": s.nnz_k,
-            "nnz_l": s.nnz_l,
-        }),
+        counts: quasi_static_counts(s),
         timings: &s.timings,
         total_seconds,
         final_load_factor: s.load_factor,
@@ -230,6 +224,25 @@ pub fn write_quasi_static(
     })?;
     check_finite(s)?;
     super::write_file(path, &text)
+}
+
+/// Points, bonds, free unknowns, nnz(K), nnz(L), the solver route and, on
+/// the `petsc` route, what PETSc's last solve used and did.
+fn quasi_static_counts(s: &QuasiStaticSolution) -> serde_json::Value {
+    #[cfg_attr(not(feature = "mpi"), allow(unused_mut))]
+    let mut counts = serde_json::json!({
+        "points": s.disc.points.len(),
+        "bonds": s.bonds,
+        "dofs": s.dofs_free,
+        "nnz_k": s.nnz_k,
+        "nnz_l": s.nnz_l,
+        "solver": s.solver,
+    });
+    #[cfg(feature = "mpi")]
+    if let Some(petsc) = &s.petsc {
+        counts["petsc"] = serde_json::json!(petsc);
+    }
+    counts
 }
 
 /// The peak reaction of every constrained set.

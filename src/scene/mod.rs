@@ -109,8 +109,7 @@ impl Scene {
             fracture::validate(&spec, &materials, &boundaries, &loads, d)?;
         let dynamics = explicit.as_ref().map(|e| &e.dynamics);
         driver_keys(&spec, &materials, &output, quasi_static.is_some(), dynamics)?;
-        let static_run = quasi_static.is_none() && dynamics.is_none();
-        let solver = solver::validate(&spec.solver, spec.model.kind, static_run)?;
+        let solver = solver::validate(&spec.solver, spec.model.kind, dynamics.is_some())?;
         let name = match &spec.name {
             Some(n) => {
                 fields::name("name", n)?;

@@ -54,16 +54,15 @@ impl SolverSettings {
     }
 }
 
-/// Validates the keys of `[solver]`; `static_run`: the scene has neither
-/// `[quasi_static]` nor `[dynamics]` (the `petsc` route solves static
-/// problems only).
+/// Validates the keys of `[solver]`; `dynamics`: the scene has `[dynamics]`
+/// (the `petsc` route solves static and quasi-static problems only).
 pub(super) fn validate(
     spec: &SolverSpec,
     model: ModelKind,
-    static_run: bool,
+    dynamics: bool,
 ) -> Result<SolverSettings, InputError> {
     if spec.method == Some(SolverMethod::Petsc) {
-        check_petsc(static_run)?;
+        check_petsc(dynamics)?;
     }
     if let Some(method @ (SolverMethod::Iterative | SolverMethod::Petsc)) = spec.method {
         for (key, present) in [
@@ -117,8 +116,8 @@ pub(super) fn validate(
 }
 
 /// Refuses `solver.method = "petsc"` where this build or this run cannot
-/// take it: a build without the `mpi` feature, a fracture or dynamics run.
-fn check_petsc(static_run: bool) -> Result<(), InputError> {
+/// take it: a build without the `mpi` feature, an explicit dynamics run.
+fn check_petsc(dynamics: bool) -> Result<(), InputError> {
     if !cfg!(feature = "mpi") {
         return Err(InputError::new(
             "solver.method",
@@ -128,11 +127,12 @@ fn check_petsc(static_run: bool) -> Result<(), InputError> {
              bodies without a factor",
         ));
     }
-    if !static_run {
+    if dynamics {
         return Err(InputError::new(
             "solver.method",
-            "\"petsc\" solves static problems only for now (quasi-static fracture and \
-             dynamics run on one process); leave solver.method out or choose \"iterative\"",
+            "\"petsc\" solves static and quasi-static problems only for now (explicit \
+             dynamics, which solves no linear system, runs on one process); remove \
+             solver.method from this [dynamics] scene",
         ));
     }
     Ok(())
@@ -149,20 +149,20 @@ mod tests {
             petsc_solver: Some(PetscSolver::Mumps),
             ..Default::default()
         };
-        let e = validate(&spec, ModelKind::BondBased, true).unwrap_err();
+        let e = validate(&spec, ModelKind::BondBased, false).unwrap_err();
         assert_eq!(e.field, "solver.petsc_solver");
         assert!(e.message.contains("\"petsc\" only"), "{}", e.message);
     }
 
     #[test]
     fn petsc_is_refused_where_it_cannot_run() {
-        let dynamic = check_petsc(false).unwrap_err();
+        let dynamic = check_petsc(true).unwrap_err();
         assert_eq!(dynamic.field, "solver.method");
         if cfg!(feature = "mpi") {
-            assert!(check_petsc(true).is_ok());
-            assert!(dynamic.message.contains("static problems only"));
+            assert!(check_petsc(false).is_ok());
+            assert!(dynamic.message.contains("quasi-static problems only"));
         } else {
-            let unbuilt = check_petsc(true).unwrap_err();
+            let unbuilt = check_petsc(false).unwrap_err();
             assert!(unbuilt.message.contains("built with the mpi feature"));
             assert!(unbuilt.message.contains("\"iterative\""));
             assert_eq!(dynamic, unbuilt);

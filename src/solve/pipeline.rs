@@ -330,6 +330,28 @@ impl Pipeline {
         Ok(k.asymmetry(self.transpose()))
     }
 
+    /// The mean `|K_kk|` over the free unknowns (the stiffness scale given to
+    /// unknowns a driver pins; a collective call on the `petsc` route).
+    #[cfg_attr(not(feature = "mpi"), allow(unused_variables))]
+    pub fn mean_diagonal(&self, k: &Stiffness, layout: Layout) -> Result<f64, Error> {
+        #[cfg(feature = "mpi")]
+        if self.source == Source::Petsc {
+            return super::petsc::mean_diagonal(&self.pattern, &k.values, layout);
+        }
+        let pattern = &self.pattern;
+        let sum: f64 = (0..k.n)
+            .filter_map(|c| {
+                (pattern.col_ptr[c]..pattern.col_ptr[c + 1]).find(|&p| pattern.row_idx[p] == c)
+            })
+            .map(|p| k.values[p].abs())
+            .sum();
+        Ok(if sum > 0.0 && k.n > 0 {
+            sum / k.n as f64
+        } else {
+            1.0
+        })
+    }
+
     /// The stored entries of `K` (on all processes, for the `petsc` route,
     /// whose pattern here holds this process's columns only).
     pub fn stored_entries(&self) -> usize {
@@ -814,6 +836,10 @@ impl Pipeline {
         if !self.factored {
             return self.solve(layout, m, rhs, notes);
         }
+        #[cfg(feature = "mpi")]
+        if self.source == Source::Petsc {
+            return self.resolve_petsc(layout, m, rhs, x0, notes);
+        }
         let cap = self.refactor_threshold();
         let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
         let t = Instant::now();
@@ -845,6 +871,63 @@ impl Pipeline {
         fresh.report.solve_seconds += elapsed;
         fresh.report.iterations += report.iterations;
         Ok(fresh)
+    }
+
+    /// [`Pipeline::resolve`] on the `petsc` route: the new values of `K`
+    /// handed to PETSc in place, its Krylov method warm-started from `x0`
+    /// with the preconditioner (GAMG's hierarchy) built for an earlier `K`,
+    /// stopping at the checkpoint ([`Solved::earlier`]) on the way; past the
+    /// refactorisation threshold PETSc sets everything up afresh.
+    #[cfg(feature = "mpi")]
+    fn resolve_petsc(
+        &mut self,
+        layout: Layout,
+        m: Matrices,
+        rhs: &[f64],
+        x0: &[f64],
+        notes: &mut Notes,
+    ) -> Result<Solved, Error> {
+        let cap = self.refactor_threshold();
+        let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
+        let Factor::Petsc(Some(solver)) = &mut self.factor else {
+            unreachable!("set up by factorize")
+        };
+        let t = Instant::now();
+        solver.update(&self.pattern, &m.k.values, layout)?;
+        let solving = Instant::now();
+        let mut x = x0.to_vec();
+        let checkpoint = Some(CHECKPOINT_FACTOR * tolerance);
+        let run = solver.solve_from(rhs, &mut x, tolerance, cap, checkpoint)?;
+        if run.iterations > 0 {
+            self.costs.iteration_seconds =
+                solving.elapsed().as_secs_f64() / run.iterations as f64;
+        }
+        let elapsed = t.elapsed().as_secs_f64();
+        if !run.converged {
+            let mut fresh = self.solve(layout, m, rhs, notes)?;
+            fresh.report.solve_seconds += elapsed;
+            fresh.report.iterations += run.iterations;
+            return Ok(fresh);
+        }
+        let report = GmresReport {
+            iterations: run.iterations,
+            relative_residual: run.residual,
+            converged: true,
+            stagnated: false,
+        };
+        Ok(Solved {
+            x,
+            report: SolveReport {
+                route: Route::Reuse,
+                iterations: run.iterations,
+                refinement_steps: 0,
+                residual: run.residual,
+                factor_seconds: 0.0,
+                solve_seconds: elapsed,
+                gmres: (!self.symmetric).then_some(report),
+            },
+            earlier: run.earlier,
+        })
     }
 
     /// Krylov iterations on `K` from `x` to `tolerance` with the current
@@ -917,6 +1000,10 @@ impl Pipeline {
         if !self.factored {
             return None;
         }
+        #[cfg(feature = "mpi")]
+        if self.source == Source::Petsc {
+            return self.improve_petsc(rhs, x, target);
+        }
         let t = Instant::now();
         let before = relative_residual(&self.product(m.k, x), rhs);
         let tolerance = target.unwrap_or(before / CHECKPOINT_FACTOR);
@@ -937,6 +1024,44 @@ impl Pipeline {
                 factor_seconds: 0.0,
                 solve_seconds: t.elapsed().as_secs_f64(),
                 gmres: run.gmres,
+            },
+            earlier: Some(x.to_vec()),
+        })
+    }
+
+    /// [`Pipeline::improve`] on the `petsc` route (`K` already in PETSc).
+    /// A PETSc error here, after the same calls succeeded in the re-solve,
+    /// counts as no improvement.
+    #[cfg(feature = "mpi")]
+    fn improve_petsc(&mut self, rhs: &[f64], x: &[f64], target: Option<f64>) -> Option<Solved> {
+        let cap = self.refactor_threshold();
+        let Factor::Petsc(Some(solver)) = &mut self.factor else {
+            unreachable!("set up by factorize")
+        };
+        let t = Instant::now();
+        let before = solver.residual_of(rhs, x).ok()?;
+        let tolerance = target.unwrap_or(before / CHECKPOINT_FACTOR);
+        let mut improved = x.to_vec();
+        let run = solver.solve_from(rhs, &mut improved, tolerance, cap, None).ok()?;
+        if !(run.converged && run.residual < 0.5 * before) {
+            return None;
+        }
+        let report = GmresReport {
+            iterations: run.iterations,
+            relative_residual: run.residual,
+            converged: true,
+            stagnated: false,
+        };
+        Some(Solved {
+            x: improved,
+            report: SolveReport {
+                route: Route::Reuse,
+                iterations: run.iterations,
+                refinement_steps: 0,
+                residual: run.residual,
+                factor_seconds: 0.0,
+                solve_seconds: t.elapsed().as_secs_f64(),
+                gmres: (!self.symmetric).then_some(report),
             },
             earlier: Some(x.to_vec()),
         })

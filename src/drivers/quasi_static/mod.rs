@@ -54,18 +54,18 @@
 //! as preconditioner (shear model, or when points were newly held).
 
 use super::setup::{Plan, Setup, Timings};
-use super::system::{check_range, layout, reactions, right_hand_side, Reaction, System};
+use super::system::{agreed, check_range, layout, reactions, right_hand_side, Reaction, System};
 use super::{forward, Observer, Progress, Snapshot};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::AppliedLoad;
 use crate::assembly::rigid_modes;
-use crate::assembly::stiffness::{self, Stiffness};
+use crate::assembly::stiffness;
 use crate::damage::{self, CalibrationReport, Criterion};
 use crate::discretization::Discretization;
 use crate::error::{Error, NumericalError};
 use crate::model::{AnyModel, Coupling, Model};
 use crate::notes::Notes;
-use crate::scene::{QuasiStatic, Scene, Strategy};
+use crate::scene::{QuasiStatic, Scene, SolverMethod, Strategy};
 use crate::solve::low_rank::Term;
 use crate::solve::pipeline::{SolveReport, Solved};
 use serde::Serialize;
@@ -235,6 +235,11 @@ pub struct QuasiStaticSolution {
     pub nnz_k: usize,
     /// Stored entries of the factor.
     pub nnz_l: Option<usize>,
+    /// The solver route taken.
+    pub solver: SolverMethod,
+    /// What the last PETSc solve used and did (`solver.method = "petsc"`).
+    #[cfg(feature = "mpi")]
+    pub petsc: Option<crate::solve::petsc::PetscReport>,
     /// Reaction of each constrained set in the final state.
     pub final_reactions: Vec<Reaction>,
     /// The points the outputs read.
@@ -333,7 +338,9 @@ fn run_with(
     forward(notes, observer);
     let system = system?;
     let t = Instant::now();
-    let diagonal = mean_diagonal(&system.stiffness, system.pipeline.pattern());
+    let diagonal = system
+        .pipeline
+        .mean_diagonal(&system.stiffness, layout(&disc, &dofs))?;
     let (criterion, calibration) = Criterion::with_report(scene, &disc);
     timings.assembly += t.elapsed().as_secs_f64();
     let mut run = Run::new(
@@ -446,10 +453,13 @@ impl<'s> Run<'s> {
             .collect();
         QuasiStaticSolution {
             set_names: self.dofs.sets.iter().map(|s| s.name.clone()).collect(),
-            nnz_k: self.system.pipeline.pattern().nnz(),
+            nnz_k: self.system.pipeline.stored_entries(),
             dofs_free: self.dofs.n_free(),
             bonds: self.disc.bonds.len(),
             nnz_l: self.system.pipeline.nnz_factor(),
+            solver: self.system.pipeline.method(),
+            #[cfg(feature = "mpi")]
+            petsc: self.system.pipeline.petsc_report().cloned(),
             disc: self.disc,
             dofs: self.dofs,
             u,
@@ -522,19 +532,3 @@ impl Run<'_> {
     }
 }
 
-/// Mean diagonal entry of `K` (the stiffness scale given to held unknowns).
-fn mean_diagonal(k: &Stiffness, pattern: &crate::assembly::pattern::Pattern) -> f64 {
-    let mut sum = 0.0;
-    for col in 0..k.n {
-        for idx in pattern.col_ptr[col]..pattern.col_ptr[col + 1] {
-            if pattern.row_idx[idx] == col {
-                sum += k.values[idx].abs();
-            }
-        }
-    }
-    if sum > 0.0 && k.n > 0 {
-        sum / k.n as f64
-    } else {
-        1.0
-    }
-}

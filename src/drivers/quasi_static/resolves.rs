@@ -174,13 +174,14 @@ impl Run<'_> {
                 }
             }
         }
-        check_range(
+        let in_range = check_range(
             &self.system.stiffness,
             pattern,
             &self.dofs,
             &self.disc,
             columns,
-        )?;
+        );
+        agreed(&self.scene.solver, in_range)?;
         Ok(rhs)
     }
 

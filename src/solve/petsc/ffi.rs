@@ -42,6 +42,10 @@ pub const KSP_NORM_UNPRECONDITIONED: c_int = 2;
 pub const PC_RIGHT: c_int = 1;
 /// `NormType::NORM_2`.
 pub const NORM_2: c_int = 1;
+/// `MatAssemblyType::MAT_FINAL_ASSEMBLY`.
+pub const MAT_FINAL_ASSEMBLY: c_int = 0;
+/// `PETSC_TRUE`.
+pub const PETSC_TRUE: PetscBool = 1;
 /// `PETSC_DEFAULT` (a tolerance left at PETSc's default).
 pub const PETSC_DEFAULT: PetscReal = -2.0;
 
@@ -110,6 +114,17 @@ extern "C" {
         j: *const PetscInt,
         v: *const PetscScalar,
     ) -> PetscErrorCode;
+    pub fn MatSetValues(
+        mat: Mat,
+        m: PetscInt,
+        rows: *const PetscInt,
+        n: PetscInt,
+        columns: *const PetscInt,
+        values: *const PetscScalar,
+        insert: c_int,
+    ) -> PetscErrorCode;
+    pub fn MatAssemblyBegin(mat: Mat, kind: c_int) -> PetscErrorCode;
+    pub fn MatAssemblyEnd(mat: Mat, kind: c_int) -> PetscErrorCode;
     pub fn MatCreateVecs(mat: Mat, right: *mut Vec, left: *mut Vec) -> PetscErrorCode;
     pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
     pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
@@ -167,6 +182,8 @@ extern "C" {
     pub fn KSPSetNormType(ksp: KSP, norm: c_int) -> PetscErrorCode;
     pub fn KSPSetPCSide(ksp: KSP, side: c_int) -> PetscErrorCode;
     pub fn KSPGMRESSetRestart(ksp: KSP, restart: PetscInt) -> PetscErrorCode;
+    pub fn KSPSetInitialGuessNonzero(ksp: KSP, nonzero: PetscBool) -> PetscErrorCode;
+    pub fn KSPSetReusePreconditioner(ksp: KSP, reuse: PetscBool) -> PetscErrorCode;
     pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSolve(ksp: KSP, b: Vec, x: Vec) -> PetscErrorCode;

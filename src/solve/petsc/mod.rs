@@ -96,7 +96,7 @@ fn check(call: &'static str, code: ffi::PetscErrorCode) -> Result<(), Error> {
 mod partition;
 mod processes;
 
-pub(crate) use partition::{assembled_columns, asymmetry};
+pub(crate) use partition::{assembled_columns, asymmetry, mean_diagonal};
 use partition::{local_rows, petsc_int, LocalRows, Numbering};
 use processes::{comm_query, ensure_initialized, sum_each_over_processes};
 pub(crate) use processes::sum_over_processes;
@@ -120,6 +120,17 @@ pub struct PetscReport {
     /// The stored entries of `K` in each process's rows (identity rows
     /// included): the balance of the partition.
     pub entries_per_process: Vec<usize>,
+}
+
+/// What a re-solve from an initial guess did ([`Solver::solve_from`]).
+pub(super) struct Resolved {
+    pub(super) iterations: usize,
+    /// `‖b − K x‖/‖b‖` (infinite when not converged).
+    pub(super) residual: f64,
+    /// Reached the tolerance within the iterations allowed.
+    pub(super) converged: bool,
+    /// The iterate at the checkpoint, when one was asked for.
+    pub(super) earlier: Option<Vec<f64>>,
 }
 
 /// Owns a `Mat`.
@@ -177,8 +188,10 @@ pub(super) struct Solver {
     matrix: Matrix,
     /// PETSc's rows in all.
     global_rows: usize,
-    /// PETSc's row of every free unknown of dhpd.
-    rows: Vec<PetscInt>,
+    /// The points' parts and PETSc's row of every free unknown of dhpd.
+    numbering: Numbering,
+    /// This process's rows.
+    range: std::ops::Range<usize>,
     /// The free unknown of each of this process's rows (`PRESCRIBED`: an
     /// identity row).
     owned: Vec<u32>,
@@ -297,7 +310,8 @@ impl Solver {
             b,
             matrix,
             global_rows: numbering.points.len() * d,
-            rows: numbering.rows,
+            numbering,
+            range: first..last,
             owned,
             stored_entries,
             entries_per_process,
@@ -312,12 +326,7 @@ impl Solver {
     /// assembled: no process holds all of `K`); an error when PETSc's Krylov
     /// method did not converge.
     pub(super) fn solve(&mut self, rhs: &[f64], x: &mut [f64]) -> Result<(usize, f64), Error> {
-        let owned = &self.owned;
-        let value = |r: usize| match owned[r] {
-            PRESCRIBED => 0.0,
-            k => rhs[k as usize],
-        };
-        self.b.write(value, owned.len())?;
+        self.write_rhs(rhs)?;
         call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
         let (mut iterations, mut reason) = (0, 0);
         call!(KSPGetIterationNumber(self.krylov.0, &mut iterations))?;
@@ -337,6 +346,129 @@ impl Solver {
         self.gather(x)?;
         self.report = Some(report);
         Ok((iterations as usize, residual))
+    }
+
+    /// Hands new values of `K` (`values` on the same `pattern`: bonds that
+    /// broke leave zeros where they were) to PETSc's matrix in place, row by
+    /// row; the preconditioner is left as it was built.
+    pub(super) fn update(
+        &mut self,
+        pattern: &Pattern,
+        values: &[f64],
+        layout: Layout,
+    ) -> Result<(), Error> {
+        let rows = on_every_process(local_rows(
+            pattern,
+            values,
+            layout,
+            &self.numbering,
+            self.range.clone(),
+        ))?;
+        let set = (0..self.owned.len()).try_for_each(|r| {
+            let (a, b) = (rows.offsets[r] as usize, rows.offsets[r + 1] as usize);
+            let row = (self.range.start + r) as PetscInt;
+            call!(MatSetValues(
+                self.matrix.0,
+                1,
+                &row,
+                (b - a) as PetscInt,
+                rows.columns[a..b].as_ptr(),
+                rows.values[a..b].as_ptr(),
+                ffi::INSERT_VALUES
+            ))
+        });
+        // Every process reaches the collective assembly, or none does.
+        on_every_process(set)?;
+        call!(MatAssemblyBegin(self.matrix.0, ffi::MAT_FINAL_ASSEMBLY))?;
+        call!(MatAssemblyEnd(self.matrix.0, ffi::MAT_FINAL_ASSEMBLY))
+    }
+
+    /// Re-solves `K x = rhs` from the initial guess `x` (the whole vector on
+    /// every process, overwritten by the answer) with the preconditioner as
+    /// it was built, to the relative residual `tolerance` within `cap`
+    /// iterations. With a `checkpoint` (above `tolerance`) it first stops at
+    /// that residual and keeps the iterate ([`Resolved::earlier`]), then goes
+    /// on from it: two Krylov runs, the second restarted.
+    pub(super) fn solve_from(
+        &mut self,
+        rhs: &[f64],
+        x: &mut [f64],
+        tolerance: f64,
+        cap: usize,
+        checkpoint: Option<f64>,
+    ) -> Result<Resolved, Error> {
+        self.write_rhs(rhs)?;
+        let owned = &self.owned;
+        let guess = |r: usize| match owned[r] {
+            PRESCRIBED => 0.0,
+            k => x[k as usize],
+        };
+        self.x.write(guess, owned.len())?;
+        call!(KSPSetInitialGuessNonzero(self.krylov.0, ffi::PETSC_TRUE))?;
+        call!(KSPSetReusePreconditioner(self.krylov.0, ffi::PETSC_TRUE))?;
+        let mut earlier = None;
+        let mut iterations = 0;
+        for (stage, target) in checkpoint.into_iter().chain([tolerance]).enumerate() {
+            let left = cap.saturating_sub(iterations).max(1);
+            call!(KSPSetTolerances(
+                self.krylov.0,
+                target,
+                ffi::PETSC_DEFAULT,
+                ffi::PETSC_DEFAULT,
+                petsc_int(left, "iterations")?
+            ))?;
+            call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
+            let (mut its, mut reason) = (0, 0);
+            call!(KSPGetIterationNumber(self.krylov.0, &mut its))?;
+            call!(KSPGetConvergedReason(self.krylov.0, &mut reason))?;
+            iterations += its as usize;
+            self.report = Some(self.report(iterations, reason)?);
+            if reason <= 0 {
+                return Ok(Resolved {
+                    iterations,
+                    residual: f64::INFINITY,
+                    converged: false,
+                    earlier: None,
+                });
+            }
+            if stage == 0 && checkpoint.is_some() {
+                let mut at_checkpoint = vec![0.0; x.len()];
+                self.gather(&mut at_checkpoint)?;
+                earlier = Some(at_checkpoint);
+            }
+        }
+        let residual = self.residual()?;
+        self.gather(x)?;
+        Ok(Resolved {
+            iterations,
+            residual,
+            converged: true,
+            earlier,
+        })
+    }
+
+    /// `‖rhs − K x‖/‖rhs‖` with PETSc's product.
+    pub(super) fn residual_of(&mut self, rhs: &[f64], x: &[f64]) -> Result<f64, Error> {
+        self.write_rhs(rhs)?;
+        let owned = &self.owned;
+        self.x.write(
+            |r| match owned[r] {
+                PRESCRIBED => 0.0,
+                k => x[k as usize],
+            },
+            owned.len(),
+        )?;
+        self.residual()
+    }
+
+    /// Writes this process's rows of `rhs` into `b` (zero in identity rows).
+    fn write_rhs(&mut self, rhs: &[f64]) -> Result<(), Error> {
+        let owned = &self.owned;
+        let value = |r: usize| match owned[r] {
+            PRESCRIBED => 0.0,
+            k => rhs[k as usize],
+        };
+        self.b.write(value, owned.len())
     }
 
     /// `‖b − K x‖/‖b‖` of the last solve, with PETSc's product.
@@ -370,7 +502,7 @@ impl Solver {
             // SAFETY: the gathered vector holds every row.
             let all = unsafe { std::slice::from_raw_parts(data, self.global_rows) };
             x.iter_mut()
-                .zip(&self.rows)
+                .zip(&self.numbering.rows)
                 .for_each(|(v, &r)| *v = all[r as usize]);
         }
         call!(VecRestoreArrayRead(all.0, &mut data))

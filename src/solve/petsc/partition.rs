@@ -79,6 +79,35 @@ pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], layout: Layout) -> Re
     Ok(if total > 0.0 { (skew / total).sqrt() } else { 0.0 })
 }
 
+/// The mean `|K_kk|` over the free unknowns of a distributed `K` (`values`
+/// on this process's columns, [`assembled_columns`]), each process summing
+/// its own points' columns (a collective call).
+pub(crate) fn mean_diagonal(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    let dofs = layout.dofs;
+    let numbering = Numbering::new(pattern, dofs, layout.x, processes)?;
+    let (mut sum, mut count) = (0.0, 0usize);
+    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
+        for c in 0..dofs.d {
+            let k = dofs.free_index[3 * q + c];
+            if k == PRESCRIBED {
+                continue;
+            }
+            let k = k as usize;
+            count += 1;
+            sum += (pattern.col_ptr[k]..pattern.col_ptr[k + 1])
+                .find(|&p| pattern.row_idx[p] == k)
+                .map_or(0.0, |p| values[p].abs());
+        }
+    }
+    let (sum, count) = (sum_over_processes(sum), sum_over_processes(count as f64));
+    Ok(if sum > 0.0 && count > 0.0 { sum / count } else { 1.0 })
+}
+
 /// `n` as a `PetscInt`, or an error naming `what` (32-bit indices).
 pub(super) fn petsc_int(n: usize, what: &str) -> Result<PetscInt, Error> {
     PetscInt::try_from(n).map_err(|_| {
