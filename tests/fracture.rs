@@ -289,6 +289,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m = Matrices {
                 k: &k,
                 surrogate: None,
+                changed: None,
             };
             let layout = system::layout(&disc, &dofs);
             let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
@@ -301,6 +302,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m = Matrices {
                 k: &k,
                 surrogate: None,
+                changed: None,
             };
             let mut other = analyse(&disc, model.coupling(), &mut notes);
             let fresh = other.solve(layout, m, &b, &mut notes).unwrap();
@@ -313,6 +315,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m0 = Matrices {
                 k: &k0,
                 surrogate: None,
+                changed: None,
             };
             updated.solve(layout, m0, &b0, &mut notes).unwrap();
             let free = |i: usize, c: usize| dofs.free_index[3 * i + c] as usize;
@@ -356,6 +359,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m = Matrices {
                 k: &k,
                 surrogate: s0.as_ref(),
+                changed: None,
             };
             let layout = system::layout(&disc, &dofs);
             let x0 = pipeline.solve(layout, m, &b, &mut notes).unwrap().x;
@@ -372,6 +376,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m = Matrices {
                 k: &k,
                 surrogate: s1.as_ref(),
+                changed: None,
             };
             let reused = pipeline.resolve(layout, m, &b, &x0, &mut notes).unwrap();
             assert_eq!(reused.report.route, Route::Reuse);
@@ -380,6 +385,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             let m = Matrices {
                 k: &k,
                 surrogate: s2.as_ref(),
+                changed: None,
             };
             let fresh = other.solve(layout, m, &b, &mut notes).unwrap();
             (fresh.x, reused.x, reused.report.iterations)

@@ -91,6 +91,7 @@ impl System {
         let matrices = Matrices {
             k: &self.stiffness,
             surrogate: self.surrogate.as_ref().map(|(_, values)| values),
+            changed: None,
         };
         (&mut self.pipeline, matrices)
     }

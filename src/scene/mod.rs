@@ -109,7 +109,11 @@ impl Scene {
             fracture::validate(&spec, &materials, &boundaries, &loads, d)?;
         let dynamics = explicit.as_ref().map(|e| &e.dynamics);
         driver_keys(&spec, &materials, &output, quasi_static.is_some(), dynamics)?;
-        let solver = solver::validate(&spec.solver, spec.model.kind, dynamics.is_some())?;
+        let run = solver::RunKind {
+            dynamics: dynamics.is_some(),
+            fracture: quasi_static.is_some(),
+        };
+        let solver = solver::validate(&spec.solver, spec.model.kind, run)?;
         let name = match &spec.name {
             Some(n) => {
                 fields::name("name", n)?;

@@ -54,15 +54,33 @@ impl SolverSettings {
     }
 }
 
-/// Validates the keys of `[solver]`; `dynamics`: the scene has `[dynamics]`
-/// (the `petsc` route solves static and quasi-static problems only).
+/// What kind of run a scene asks for, as far as the solver cares.
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct RunKind {
+    /// `[dynamics]`: explicit dynamics, no linear solve.
+    pub(super) dynamics: bool,
+    /// `[quasi_static]`: fracture, with re-solves as bonds break.
+    pub(super) fracture: bool,
+}
+
+/// Validates the keys of `[solver]` for a `run` (the `petsc` route solves
+/// static and quasi-static problems only, the latter with GAMG).
 pub(super) fn validate(
     spec: &SolverSpec,
     model: ModelKind,
-    dynamics: bool,
+    run: RunKind,
 ) -> Result<SolverSettings, InputError> {
     if spec.method == Some(SolverMethod::Petsc) {
-        check_petsc(dynamics)?;
+        check_petsc(run.dynamics)?;
+    }
+    if run.fracture && spec.petsc_solver == Some(PetscSolver::Mumps) {
+        return Err(InputError::new(
+            "solver.petsc_solver",
+            "\"mumps\" is offered for static solves only: a fracture run re-solves after \
+             every break, which MUMPS's factor (applied once, not iterated) could only do by \
+             factorising afresh, and it stops at a point that becomes a mechanism instead \
+             of naming it; use \"gamg\" (the default), whose re-solves reuse its hierarchy",
+        ));
     }
     if let Some(method @ (SolverMethod::Iterative | SolverMethod::Petsc)) = spec.method {
         for (key, present) in [
@@ -140,7 +158,7 @@ fn check_petsc(dynamics: bool) -> Result<(), InputError> {
 
 #[cfg(test)]
 mod tests {
-    use super::{check_petsc, validate, PetscSolver, SolverSpec};
+    use super::{check_petsc, validate, PetscSolver, RunKind, SolverSpec};
     use crate::scene::ModelKind;
 
     #[test]
@@ -149,9 +167,30 @@ mod tests {
             petsc_solver: Some(PetscSolver::Mumps),
             ..Default::default()
         };
-        let e = validate(&spec, ModelKind::BondBased, false).unwrap_err();
+        let e = validate(&spec, ModelKind::BondBased, RunKind::default()).unwrap_err();
         assert_eq!(e.field, "solver.petsc_solver");
         assert!(e.message.contains("\"petsc\" only"), "{}", e.message);
+    }
+
+    #[test]
+    fn mumps_is_refused_for_fracture() {
+        let spec = SolverSpec {
+            method: Some(super::SolverMethod::Petsc),
+            petsc_solver: Some(PetscSolver::Mumps),
+            ..Default::default()
+        };
+        let fracture = RunKind {
+            fracture: true,
+            ..Default::default()
+        };
+        let e = validate(&spec, ModelKind::BondBased, fracture).unwrap_err();
+        if cfg!(feature = "mpi") {
+            assert_eq!(e.field, "solver.petsc_solver");
+            assert!(e.message.contains("\"gamg\""), "{}", e.message);
+        } else {
+            // Without the feature the route itself is refused first.
+            assert_eq!(e.field, "solver.method");
+        }
     }
 
     #[test]

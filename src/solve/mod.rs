@@ -78,6 +78,9 @@ pub struct Matrices<'a> {
     pub k: &'a Stiffness,
     /// The surrogate, when the pipeline asked for one.
     pub surrogate: Option<&'a Stiffness>,
+    /// The point columns of `K` whose values changed since the last solve
+    /// (`None`: any may have), for a route that hands `K` over in place.
+    pub changed: Option<&'a [bool]>,
 }
 
 /// Euclidean norm without overflow or underflow of the squares: scaled by the

@@ -608,11 +608,13 @@ impl Pipeline {
         self.costs.iteration_seconds =
             (t.elapsed().as_secs_f64() / iterations.max(1) as f64).max(f64::MIN_POSITIVE);
         self.costs.fresh_iterations = iterations;
+        // MUMPS's factor applied once is a direct solve, not a Krylov run.
+        let direct = self.settings.petsc_solver == crate::scene::solver::PetscSolver::Mumps;
         Ok(Fresh {
             residual,
             refinement_steps: 0,
             at_floor: false,
-            krylov: Some(GmresReport {
+            krylov: (!direct).then_some(GmresReport {
                 iterations,
                 relative_residual: residual,
                 converged: true,
@@ -877,7 +879,8 @@ impl Pipeline {
     /// handed to PETSc in place, its Krylov method warm-started from `x0`
     /// with the preconditioner (GAMG's hierarchy) built for an earlier `K`,
     /// stopping at the checkpoint ([`Solved::earlier`]) on the way; past the
-    /// refactorisation threshold PETSc sets everything up afresh.
+    /// refactorisation threshold, or when its true residual is above the
+    /// checkpoint's, PETSc sets everything up afresh.
     #[cfg(feature = "mpi")]
     fn resolve_petsc(
         &mut self,
@@ -893,7 +896,7 @@ impl Pipeline {
             unreachable!("set up by factorize")
         };
         let t = Instant::now();
-        solver.update(&self.pattern, &m.k.values, layout)?;
+        solver.update(&self.pattern, &m.k.values, layout, m.changed)?;
         let solving = Instant::now();
         let mut x = x0.to_vec();
         let checkpoint = Some(CHECKPOINT_FACTOR * tolerance);
@@ -903,7 +906,7 @@ impl Pipeline {
                 solving.elapsed().as_secs_f64() / run.iterations as f64;
         }
         let elapsed = t.elapsed().as_secs_f64();
-        if !run.converged {
+        if !(run.converged && run.residual <= CHECKPOINT_FACTOR * tolerance) {
             let mut fresh = self.solve(layout, m, rhs, notes)?;
             fresh.report.solve_seconds += elapsed;
             fresh.report.iterations += run.iterations;

@@ -10,7 +10,7 @@
 //! | `lu` | `K = L U`, triangular solves, refinement | GMRES preconditioned by the old `L U` |
 //! | `gmres` | GMRES on `K` preconditioned by the Cholesky factor of a symmetric surrogate | GMRES with the old surrogate factor |
 //! | `iterative` | CG on `K` (GMRES if not symmetric) preconditioned by a two-level cycle ([`super::two_level`]): no factor of `K` | the same with the old cycle |
-//! | `petsc` | PETSc's CG (GMRES) with algebraic multigrid, on the processes of an MPI run (`solve::petsc`, `mpi` feature) | none: static solves only |
+//! | `petsc` | PETSc's CG (GMRES) with algebraic multigrid, on the processes of an MPI run (`solve::petsc`, `mpi` feature) | the same, warm-started, with the old multigrid hierarchy |
 //!
 //! The surrogate of the `gmres` route is a symmetric positive definite matrix
 //! on a sparser pattern that the caller provides ([`wants_surrogate`]; the

@@ -194,7 +194,8 @@ impl Run<'_> {
         let columns = self.changed_columns(first);
         let rhs = self.refill(columns.as_deref())?;
         let layout = layout(&self.disc, &self.dofs);
-        let (pipeline, m) = self.system.parts();
+        let (pipeline, mut m) = self.system.parts();
+        m.changed = columns.as_deref();
         let notes = &mut self.notes;
         let solved = match terms {
             _ if first => pipeline.solve(layout, m, &rhs, notes),

@@ -32,6 +32,11 @@ pub type MatNullSpace = *mut Opaque;
 pub type KSP = *mut Opaque;
 pub type PC = *mut Opaque;
 
+/// A Krylov monitor: called with the iteration and the residual norm of the
+/// convergence test after every iteration (and before the first).
+pub type Monitor =
+    unsafe extern "C" fn(KSP, PetscInt, PetscReal, *mut c_void) -> PetscErrorCode;
+
 /// `InsertMode::INSERT_VALUES`.
 pub const INSERT_VALUES: c_int = 1;
 /// `ScatterMode::SCATTER_FORWARD`.
@@ -183,6 +188,13 @@ extern "C" {
     pub fn KSPSetPCSide(ksp: KSP, side: c_int) -> PetscErrorCode;
     pub fn KSPGMRESSetRestart(ksp: KSP, restart: PetscInt) -> PetscErrorCode;
     pub fn KSPSetInitialGuessNonzero(ksp: KSP, nonzero: PetscBool) -> PetscErrorCode;
+    pub fn KSPMonitorSet(
+        ksp: KSP,
+        monitor: Monitor,
+        context: *mut c_void,
+        destroy: Option<unsafe extern "C" fn(*mut *mut c_void) -> PetscErrorCode>,
+    ) -> PetscErrorCode;
+    pub fn KSPBuildSolution(ksp: KSP, v: Vec, solution: *mut Vec) -> PetscErrorCode;
     pub fn KSPSetReusePreconditioner(ksp: KSP, reuse: PetscBool) -> PetscErrorCode;
     pub fn KSPSetFromOptions(ksp: KSP) -> PetscErrorCode;
     pub fn KSPSetUp(ksp: KSP) -> PetscErrorCode;

@@ -2,7 +2,8 @@
 //! build with the `mpi` feature): a thin FFI over the functions used, owners
 //! of PETSc's objects that destroy them when dropped, and the solve.
 //!
-//! **What is distributed: the assembly and the linear solve.** Every process
+//! **What is distributed: the assembly and the linear solves** (static and
+//! quasi-static fracture). Every process
 //! reads the scene and discretises the whole body (replicated: points, bonds
 //! and the point-level pattern, a few KB per point), then takes its part of
 //! the points (recursive coordinate bisection, [`Numbering`], balanced by the
@@ -20,6 +21,21 @@
 //! process fails ([`on_every_process`]) stops all of them, so that none goes
 //! on alone into PETSc's collective calls.
 //!
+//! **Fracture re-solves.** After bonds break, the driver refills the changed
+//! columns of `K` on every process (each its own and ghost columns); the new
+//! values of this process's rows go into PETSc's matrix in place (the same
+//! pattern: a broken bond leaves zeros, [`Solver::update`]), and the Krylov
+//! method starts from the previous answer with the preconditioner built for
+//! an earlier `K` (`KSPSetReusePreconditioner`, `KSPSetInitialGuessNonzero`),
+//! and a monitor keeps the first iterate whose residual is below
+//! [`CHECKPOINT_FACTOR`](super::pipeline::CHECKPOINT_FACTOR) times the
+//! tolerance, the error estimate the fracture driver's decisions are checked
+//! against ([`Solver::solve_from`]). PETSc's convergence test is relative to `‖b‖`
+//! (its default), as dhpd's own. When a re-solve needs more iterations than
+//! the pipeline's refactorisation threshold, everything is set up afresh.
+//! Every process holds the same bonds and receives the same answer, so each
+//! decides the same bonds to break.
+//!
 //! With `solver.petsc_solver = "mumps"` PETSc factorises instead, by MUMPS's
 //! distributed sparse LU (an external package of Debian's PETSc), applied once
 //! (`-ksp_type preonly`), its residual checked in the same way.
@@ -36,7 +52,7 @@
 //! the `PETSC_OPTIONS` environment variable.
 //!
 //! **Why an FFI.** No maintained Rust binding of PETSc exists (petsc-rs, a
-//! work in progress, builds its bindings with bindgen and rsmpi); the ~40 C
+//! work in progress, builds its bindings with bindgen and rsmpi); the ~55 C
 //! functions used here are stable API. Their declarations follow PETSc 3.18's
 //! headers (`petscsys.h`, `petscvec.h`, `petscmat.h`, `petscksp.h`,
 //! `petscpc.h`) as Debian's `petsc-dev` builds it: `PetscInt` 32-bit,
@@ -97,7 +113,7 @@ mod partition;
 mod processes;
 
 pub(crate) use partition::{assembled_columns, asymmetry, mean_diagonal};
-use partition::{local_rows, petsc_int, LocalRows, Numbering};
+use partition::{changed_rows, local_rows, petsc_int, LocalRows, Numbering, SomeRows};
 use processes::{comm_query, ensure_initialized, sum_each_over_processes};
 pub(crate) use processes::sum_over_processes;
 pub use processes::{on_every_process, share_path, Petsc};
@@ -131,6 +147,55 @@ pub(super) struct Resolved {
     pub(super) converged: bool,
     /// The iterate at the checkpoint, when one was asked for.
     pub(super) earlier: Option<Vec<f64>>,
+}
+
+/// The distributed vector `v` (PETSc's `rows` rows) whole on every process,
+/// in dhpd's unknowns (`numbering`), into `x`.
+fn gather(v: ffi::Vec, rows: usize, numbering: &Numbering, x: &mut [f64]) -> Result<(), Error> {
+    let (mut scatter, mut all) = (Scatter(null_mut()), Vector(null_mut()));
+    call!(VecScatterCreateToAll(v, &mut scatter.0, &mut all.0))?;
+    let mode = (ffi::INSERT_VALUES, ffi::SCATTER_FORWARD);
+    call!(VecScatterBegin(scatter.0, v, all.0, mode.0, mode.1))?;
+    call!(VecScatterEnd(scatter.0, v, all.0, mode.0, mode.1))?;
+    let mut data: *const f64 = null();
+    call!(VecGetArrayRead(all.0, &mut data))?;
+    if rows > 0 {
+        // SAFETY: the gathered vector holds every row.
+        let all = unsafe { std::slice::from_raw_parts(data, rows) };
+        x.iter_mut()
+            .zip(&numbering.rows)
+            .for_each(|(v, &r)| *v = all[r as usize]);
+    }
+    call!(VecRestoreArrayRead(all.0, &mut data))
+}
+
+/// What the Krylov monitor [`keep_checkpoint`] keeps: the first iterate
+/// whose residual norm is at most `threshold` (absolute; negative: none is
+/// wanted), copied into `iterate`.
+struct Checkpoint {
+    threshold: f64,
+    kept: bool,
+    iterate: Vector,
+}
+
+/// The Krylov monitor that keeps the checkpoint iterate ([`Checkpoint`]) in
+/// the one run to the tolerance (CG updates its iterate at every step, GMRES
+/// builds it from its basis: `KSPBuildSolution` does either).
+unsafe extern "C" fn keep_checkpoint(
+    ksp: ffi::KSP,
+    _iteration: PetscInt,
+    norm: f64,
+    context: *mut std::ffi::c_void,
+) -> ffi::PetscErrorCode {
+    // SAFETY: `context` is the `Checkpoint` the solver owns, alive while its
+    // KSP is, and PETSc calls the monitor from the solve on this thread only.
+    let checkpoint = unsafe { &mut *(context as *mut Checkpoint) };
+    if checkpoint.kept || !(norm <= checkpoint.threshold) {
+        return 0;
+    }
+    checkpoint.kept = true;
+    // SAFETY: a live KSP in its solve and a vector of its layout.
+    unsafe { ffi::KSPBuildSolution(ksp, checkpoint.iterate.0, null_mut()) }
 }
 
 /// Owns a `Mat`.
@@ -183,6 +248,8 @@ impl Vector {
 /// its multigrid built, and the vectors of the solve.
 pub(super) struct Solver {
     krylov: Krylov,
+    /// The monitor's state (dropped after the `KSP` that points to it).
+    checkpoint: Box<Checkpoint>,
     x: Vector,
     b: Vector,
     matrix: Matrix,
@@ -272,8 +339,17 @@ impl Solver {
 
         let (mut x, mut b) = (Vector(null_mut()), Vector(null_mut()));
         call!(MatCreateVecs(matrix.0, &mut x.0, &mut b.0))?;
+        let mut iterate = Vector(null_mut());
+        call!(VecDuplicate(x.0, &mut iterate.0))?;
+        let mut checkpoint = Box::new(Checkpoint {
+            threshold: -1.0,
+            kept: false,
+            iterate,
+        });
         let mut krylov = Krylov(null_mut());
         call!(KSPCreate(comm, &mut krylov.0))?;
+        let context = &mut *checkpoint as *mut Checkpoint as *mut std::ffi::c_void;
+        call!(KSPMonitorSet(krylov.0, keep_checkpoint, context, None))?;
         call!(KSPSetOperators(krylov.0, matrix.0, matrix.0))?;
         if symmetric {
             call!(KSPSetType(krylov.0, c"cg".as_ptr()))?;
@@ -306,6 +382,7 @@ impl Solver {
         call!(KSPSetUp(krylov.0))?;
         Ok(Solver {
             krylov,
+            checkpoint,
             x,
             b,
             matrix,
@@ -350,27 +427,35 @@ impl Solver {
 
     /// Hands new values of `K` (`values` on the same `pattern`: bonds that
     /// broke leave zeros where they were) to PETSc's matrix in place, row by
-    /// row; the preconditioner is left as it was built.
+    /// row: the rows with an entry in a `changed` point column (`None`:
+    /// every row). The preconditioner is left as it was built.
     pub(super) fn update(
         &mut self,
         pattern: &Pattern,
         values: &[f64],
         layout: Layout,
+        changed: Option<&[bool]>,
     ) -> Result<(), Error> {
-        let rows = on_every_process(local_rows(
-            pattern,
-            values,
-            layout,
-            &self.numbering,
-            self.range.clone(),
-        ))?;
-        let set = (0..self.owned.len()).try_for_each(|r| {
-            let (a, b) = (rows.offsets[r] as usize, rows.offsets[r + 1] as usize);
-            let row = (self.range.start + r) as PetscInt;
+        let range = self.range.clone();
+        let rows = on_every_process(match changed {
+            Some(changed) => {
+                changed_rows(pattern, values, layout, &self.numbering, range, changed)
+            }
+            None => local_rows(pattern, values, layout, &self.numbering, range.clone()).map(
+                |all| SomeRows {
+                    rows: (range.start..range.end).map(|r| r as PetscInt).collect(),
+                    offsets: all.offsets.iter().map(|&o| o as usize).collect(),
+                    columns: all.columns,
+                    values: all.values,
+                },
+            ),
+        })?;
+        let set = (0..rows.rows.len()).try_for_each(|r| {
+            let (a, b) = (rows.offsets[r], rows.offsets[r + 1]);
             call!(MatSetValues(
                 self.matrix.0,
                 1,
-                &row,
+                &rows.rows[r],
                 (b - a) as PetscInt,
                 rows.columns[a..b].as_ptr(),
                 rows.values[a..b].as_ptr(),
@@ -386,9 +471,9 @@ impl Solver {
     /// Re-solves `K x = rhs` from the initial guess `x` (the whole vector on
     /// every process, overwritten by the answer) with the preconditioner as
     /// it was built, to the relative residual `tolerance` within `cap`
-    /// iterations. With a `checkpoint` (above `tolerance`) it first stops at
-    /// that residual and keeps the iterate ([`Resolved::earlier`]), then goes
-    /// on from it: two Krylov runs, the second restarted.
+    /// iterations. With a `checkpoint` (above `tolerance`) it also keeps the
+    /// first iterate whose relative residual is at most that
+    /// ([`Resolved::earlier`]; the initial guess if it already is).
     pub(super) fn solve_from(
         &mut self,
         rhs: &[f64],
@@ -404,39 +489,42 @@ impl Solver {
             k => x[k as usize],
         };
         self.x.write(guess, owned.len())?;
+        let mut norm_b = 0.0;
+        call!(VecNorm(self.b.0, ffi::NORM_2, &mut norm_b))?;
+        self.checkpoint.threshold = checkpoint.map_or(-1.0, |c| c * norm_b);
+        self.checkpoint.kept = false;
         call!(KSPSetInitialGuessNonzero(self.krylov.0, ffi::PETSC_TRUE))?;
         call!(KSPSetReusePreconditioner(self.krylov.0, ffi::PETSC_TRUE))?;
-        let mut earlier = None;
-        let mut iterations = 0;
-        for (stage, target) in checkpoint.into_iter().chain([tolerance]).enumerate() {
-            let left = cap.saturating_sub(iterations).max(1);
-            call!(KSPSetTolerances(
-                self.krylov.0,
-                target,
-                ffi::PETSC_DEFAULT,
-                ffi::PETSC_DEFAULT,
-                petsc_int(left, "iterations")?
-            ))?;
-            call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
-            let (mut its, mut reason) = (0, 0);
-            call!(KSPGetIterationNumber(self.krylov.0, &mut its))?;
-            call!(KSPGetConvergedReason(self.krylov.0, &mut reason))?;
-            iterations += its as usize;
-            self.report = Some(self.report(iterations, reason)?);
-            if reason <= 0 {
-                return Ok(Resolved {
-                    iterations,
-                    residual: f64::INFINITY,
-                    converged: false,
-                    earlier: None,
-                });
-            }
-            if stage == 0 && checkpoint.is_some() {
-                let mut at_checkpoint = vec![0.0; x.len()];
-                self.gather(&mut at_checkpoint)?;
-                earlier = Some(at_checkpoint);
-            }
+        call!(KSPSetTolerances(
+            self.krylov.0,
+            tolerance,
+            ffi::PETSC_DEFAULT,
+            ffi::PETSC_DEFAULT,
+            petsc_int(cap.max(1), "iterations")?
+        ))?;
+        call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
+        self.checkpoint.threshold = -1.0;
+        let (mut iterations, mut reason) = (0, 0);
+        call!(KSPGetIterationNumber(self.krylov.0, &mut iterations))?;
+        call!(KSPGetConvergedReason(self.krylov.0, &mut reason))?;
+        let iterations = iterations as usize;
+        self.report = Some(self.report(iterations, reason)?);
+        if reason <= 0 {
+            return Ok(Resolved {
+                iterations,
+                residual: f64::INFINITY,
+                converged: false,
+                earlier: None,
+            });
         }
+        let earlier = match self.checkpoint.kept {
+            true => {
+                let mut at_checkpoint = vec![0.0; x.len()];
+                gather(self.checkpoint.iterate.0, self.global_rows, &self.numbering, &mut at_checkpoint)?;
+                Some(at_checkpoint)
+            }
+            false => None,
+        };
         let residual = self.residual()?;
         self.gather(x)?;
         Ok(Resolved {
@@ -491,21 +579,7 @@ impl Solver {
 
     /// The whole solution on every process, in dhpd's unknowns.
     fn gather(&mut self, x: &mut [f64]) -> Result<(), Error> {
-        let (mut scatter, mut all) = (Scatter(null_mut()), Vector(null_mut()));
-        call!(VecScatterCreateToAll(self.x.0, &mut scatter.0, &mut all.0))?;
-        let mode = (ffi::INSERT_VALUES, ffi::SCATTER_FORWARD);
-        call!(VecScatterBegin(scatter.0, self.x.0, all.0, mode.0, mode.1))?;
-        call!(VecScatterEnd(scatter.0, self.x.0, all.0, mode.0, mode.1))?;
-        let mut data: *const f64 = null();
-        call!(VecGetArrayRead(all.0, &mut data))?;
-        if self.global_rows > 0 {
-            // SAFETY: the gathered vector holds every row.
-            let all = unsafe { std::slice::from_raw_parts(data, self.global_rows) };
-            x.iter_mut()
-                .zip(&self.numbering.rows)
-                .for_each(|(v, &r)| *v = all[r as usize]);
-        }
-        call!(VecRestoreArrayRead(all.0, &mut data))
+        gather(self.x.0, self.global_rows, &self.numbering, x)
     }
 
     /// The report of a solve that took `iterations` and stopped for `reason`.

@@ -334,3 +334,70 @@ pub(super) fn local_rows(
         stored,
     })
 }
+
+/// Some of this process's rows of `K` with PETSc's column numbers, each as
+/// `values[offsets[r]..offsets[r + 1]]` at `columns[..]` of PETSc's row
+/// `rows[r]` (unsorted).
+pub(super) struct SomeRows {
+    pub(super) rows: Vec<PetscInt>,
+    pub(super) offsets: Vec<usize>,
+    pub(super) columns: Vec<PetscInt>,
+    pub(super) values: Vec<f64>,
+}
+
+/// The rows among PETSc's rows `range` (this process's) that hold an entry in
+/// a `changed` point column of `K`: those of the points coupled to a changed
+/// point (the pattern is structurally symmetric), each read from the columns
+/// this process assembled. Identity rows (prescribed components) never
+/// change and are left out.
+pub(super) fn changed_rows(
+    pattern: &Pattern,
+    values: &[f64],
+    layout: Layout,
+    numbering: &Numbering,
+    range: std::ops::Range<usize>,
+    changed: &[bool],
+) -> Result<SomeRows, Error> {
+    let d = layout.d();
+    let free_index = &layout.dofs.free_index;
+    let own = &numbering.points[range.start / d..range.end / d];
+    let mut some = SomeRows {
+        rows: Vec::new(),
+        offsets: vec![0],
+        columns: Vec::new(),
+        values: Vec::new(),
+    };
+    for (s, &p) in own.iter().enumerate() {
+        let coupled = pattern.rows(p);
+        if !coupled.iter().any(|&q| changed[q as usize]) {
+            continue;
+        }
+        for c in 0..d {
+            let k = free_index[3 * p + c];
+            if k == PRESCRIBED {
+                continue;
+            }
+            for &q in coupled {
+                for kk in (0..d).map(|c| free_index[3 * q as usize + c]) {
+                    if kk == PRESCRIBED {
+                        continue;
+                    }
+                    let kk = kk as usize;
+                    let column = &pattern.row_idx[pattern.col_ptr[kk]..pattern.col_ptr[kk + 1]];
+                    let Ok(at) = column.binary_search(&(k as usize)) else {
+                        return Err(NumericalError::Solver(format!(
+                            "column {kk} of K lacks row {k} on this process (a defect of \
+                             the partition's ghost points)"
+                        ))
+                        .into());
+                    };
+                    some.columns.push(numbering.rows[kk]);
+                    some.values.push(values[pattern.col_ptr[kk] + at]);
+                }
+            }
+            some.rows.push(petsc_int(range.start + s * d + c, "rows")?);
+            some.offsets.push(some.columns.len());
+        }
+    }
+    Ok(some)
+}
