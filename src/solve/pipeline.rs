@@ -890,7 +890,7 @@ impl Pipeline {
         x0: &[f64],
         notes: &mut Notes,
     ) -> Result<Solved, Error> {
-        let cap = self.refactor_threshold();
+        let cap = self.agreed_refactor_threshold();
         let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
         let Factor::Petsc(Some(solver)) = &mut self.factor else {
             unreachable!("set up by factorize")
@@ -931,6 +931,16 @@ impl Pipeline {
             },
             earlier: run.earlier,
         })
+    }
+
+    /// [`Pipeline::refactor_threshold`] agreed by the processes (their
+    /// mean, rounded down): it comes from times each measured, and PETSc's
+    /// processes must stop their Krylov iterations at the same count.
+    #[cfg(feature = "mpi")]
+    fn agreed_refactor_threshold(&self) -> usize {
+        let processes = super::petsc::sum_over_processes(1.0);
+        let sum = super::petsc::sum_over_processes(self.refactor_threshold() as f64);
+        (sum / processes).floor() as usize
     }
 
     /// Krylov iterations on `K` from `x` to `tolerance` with the current
@@ -1037,7 +1047,7 @@ impl Pipeline {
     /// counts as no improvement.
     #[cfg(feature = "mpi")]
     fn improve_petsc(&mut self, rhs: &[f64], x: &[f64], target: Option<f64>) -> Option<Solved> {
-        let cap = self.refactor_threshold();
+        let cap = self.agreed_refactor_threshold();
         let Factor::Petsc(Some(solver)) = &mut self.factor else {
             unreachable!("set up by factorize")
         };

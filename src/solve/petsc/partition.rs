@@ -348,8 +348,11 @@ pub(super) struct SomeRows {
 /// The rows among PETSc's rows `range` (this process's) that hold an entry in
 /// a `changed` point column of `K`: those of the points coupled to a changed
 /// point (the pattern is structurally symmetric), each read from the columns
-/// this process assembled. Identity rows (prescribed components) never
-/// change and are left out.
+/// this process assembled. A superset: a broken bond changes only the rows
+/// of changed points (its ends, or its owner's family), and a point the
+/// driver holds has no intact bond left when it is held; the coupled rows
+/// keep the update right whatever changes a column. Identity rows
+/// (prescribed components) never change and are left out.
 pub(super) fn changed_rows(
     pattern: &Pattern,
     values: &[f64],
