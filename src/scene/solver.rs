@@ -73,15 +73,6 @@ pub(super) fn validate(
     if spec.method == Some(SolverMethod::Petsc) {
         check_petsc(run.dynamics)?;
     }
-    if run.fracture && spec.petsc_solver == Some(PetscSolver::Mumps) {
-        return Err(InputError::new(
-            "solver.petsc_solver",
-            "\"mumps\" is offered for static solves only: a fracture run re-solves after \
-             every break, which MUMPS's factor (applied once, not iterated) could only do by \
-             factorising afresh, and it stops at a point that becomes a mechanism instead \
-             of naming it; use \"gamg\" (the default), whose re-solves reuse its hierarchy",
-        ));
-    }
     if let Some(method @ (SolverMethod::Iterative | SolverMethod::Petsc)) = spec.method {
         for (key, present) in [
             ("solver.ordering", spec.ordering.is_some()),
@@ -107,6 +98,15 @@ pub(super) fn validate(
             "solver.petsc_solver",
             "chooses what PETSc solves with, and applies to solver.method = \"petsc\" only; \
              remove it or set the method",
+        ));
+    }
+    if run.fracture && spec.petsc_solver == Some(PetscSolver::Mumps) {
+        return Err(InputError::new(
+            "solver.petsc_solver",
+            "\"mumps\" is offered for static solves only: a fracture run re-solves after \
+             every break, which MUMPS's factor (applied once, not iterated) could only do by \
+             factorising afresh, and it stops at a point that becomes a mechanism instead \
+             of naming it; use \"gamg\" (the default), whose re-solves reuse its hierarchy",
         ));
     }
     if spec.refactor_iterations == Some(0) {

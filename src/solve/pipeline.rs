@@ -879,8 +879,8 @@ impl Pipeline {
     /// handed to PETSc in place, its Krylov method warm-started from `x0`
     /// with the preconditioner (GAMG's hierarchy) built for an earlier `K`,
     /// stopping at the checkpoint ([`Solved::earlier`]) on the way; past the
-    /// refactorisation threshold, or when its true residual is above the
-    /// checkpoint's, PETSc sets everything up afresh.
+    /// refactorisation threshold (or a true residual above the tolerance),
+    /// PETSc sets everything up afresh.
     #[cfg(feature = "mpi")]
     fn resolve_petsc(
         &mut self,
@@ -906,7 +906,7 @@ impl Pipeline {
                 solving.elapsed().as_secs_f64() / run.iterations as f64;
         }
         let elapsed = t.elapsed().as_secs_f64();
-        if !(run.converged && run.residual <= CHECKPOINT_FACTOR * tolerance) {
+        if !run.converged {
             let mut fresh = self.solve(layout, m, rhs, notes)?;
             fresh.report.solve_seconds += elapsed;
             fresh.report.iterations += run.iterations;
@@ -1002,16 +1002,17 @@ impl Pipeline {
     /// [`CHECKPOINT_FACTOR`] times smaller (`K` and `rhs` unchanged): the
     /// tighter solve when the bonds' ratios are too close to decide which are
     /// critical. `None` when no preconditioner is at hand or the iteration
-    /// made no progress (the round-off floor).
+    /// made no progress (the round-off floor); an error from PETSc's solve
+    /// (the `petsc` route).
     pub fn improve(
         &mut self,
         m: Matrices,
         rhs: &[f64],
         x: &[f64],
         target: Option<f64>,
-    ) -> Option<Solved> {
+    ) -> Result<Option<Solved>, Error> {
         if !self.factored {
-            return None;
+            return Ok(None);
         }
         #[cfg(feature = "mpi")]
         if self.source == Source::Petsc {
@@ -1025,9 +1026,9 @@ impl Pipeline {
         let report = run.krylov;
         let progress = report.relative_residual < 0.5 * before;
         if !(progress && improved.iter().all(|v| v.is_finite())) {
-            return None;
+            return Ok(None);
         }
-        Some(Solved {
+        Ok(Some(Solved {
             x: improved,
             report: SolveReport {
                 route: Route::Reuse,
@@ -1039,33 +1040,38 @@ impl Pipeline {
                 gmres: run.gmres,
             },
             earlier: Some(x.to_vec()),
-        })
+        }))
     }
 
-    /// [`Pipeline::improve`] on the `petsc` route (`K` already in PETSc).
-    /// A PETSc error here, after the same calls succeeded in the re-solve,
-    /// counts as no improvement.
+    /// [`Pipeline::improve`] on the `petsc` route (`K` already in PETSc):
+    /// progress is kept even when the iterations stop at the cap.
     #[cfg(feature = "mpi")]
-    fn improve_petsc(&mut self, rhs: &[f64], x: &[f64], target: Option<f64>) -> Option<Solved> {
+    fn improve_petsc(
+        &mut self,
+        rhs: &[f64],
+        x: &[f64],
+        target: Option<f64>,
+    ) -> Result<Option<Solved>, Error> {
         let cap = self.agreed_refactor_threshold();
         let Factor::Petsc(Some(solver)) = &mut self.factor else {
             unreachable!("set up by factorize")
         };
         let t = Instant::now();
-        let before = solver.residual_of(rhs, x).ok()?;
+        let before = solver.residual_of(rhs, x)?;
         let tolerance = target.unwrap_or(before / CHECKPOINT_FACTOR);
         let mut improved = x.to_vec();
-        let run = solver.solve_from(rhs, &mut improved, tolerance, cap, None).ok()?;
-        if !(run.converged && run.residual < 0.5 * before) {
-            return None;
+        let run = solver.solve_from(rhs, &mut improved, tolerance, cap, None)?;
+        let progress = run.residual < 0.5 * before;
+        if !(progress && improved.iter().all(|v| v.is_finite())) {
+            return Ok(None);
         }
         let report = GmresReport {
             iterations: run.iterations,
             relative_residual: run.residual,
-            converged: true,
+            converged: run.converged,
             stagnated: false,
         };
-        Some(Solved {
+        Ok(Some(Solved {
             x: improved,
             report: SolveReport {
                 route: Route::Reuse,
@@ -1077,7 +1083,7 @@ impl Pipeline {
                 gmres: (!self.symmetric).then_some(report),
             },
             earlier: Some(x.to_vec()),
-        })
+        }))
     }
 
     /// GMRES on `K` preconditioned by the current factor, from `x`.

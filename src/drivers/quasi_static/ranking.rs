@@ -65,18 +65,18 @@ impl Run<'_> {
     /// Makes the current ratios decide which bonds are critical (module
     /// docs): after a Krylov re-solve, improves the solution until they do.
     /// The tighter re-solves are recorded at `step`.
-    pub(super) fn decide_ranking(&mut self, step: usize) {
+    pub(super) fn decide_ranking(&mut self, step: usize) -> Result<(), Error> {
         let tolerance = self.settings.tolerance;
         self.decide(step, 1.0, |ratios, estimate| {
             decided(ratios, estimate, tolerance)
-        });
+        })
     }
 
     /// The `all` strategy's decision at `load_factor` (module docs): every
     /// bond surely over its critical value (`λ (r̃_b − η_b) ≥ 1`) or surely
     /// under it (`λ (r̃_b + η_b) < 1`); improves the solution until it is.
-    pub(super) fn decide_threshold(&mut self, step: usize, load_factor: f64) {
-        self.decide(step, load_factor, decided_threshold);
+    pub(super) fn decide_threshold(&mut self, step: usize, load_factor: f64) -> Result<(), Error> {
+        self.decide(step, load_factor, decided_threshold)
     }
 
     /// Improves the solution of the last Krylov re-solve until `decided(ratios,
@@ -87,11 +87,11 @@ impl Run<'_> {
         step: usize,
         load_factor: f64,
         decided: impl Fn(&[f64], &[f64]) -> bool,
-    ) {
+    ) -> Result<(), Error> {
         let earlier = self.earlier.take();
         let krylov = self.solves.last().is_some_and(|s| s.report.iterations > 0);
         if !krylov {
-            return;
+            return Ok(());
         }
         self.ranking.checked += 1;
         let mut earlier = earlier;
@@ -103,19 +103,20 @@ impl Run<'_> {
                     if round > 0 {
                         self.ranking.tightened += 1;
                     }
-                    return;
+                    return Ok(());
                 }
                 if round == MAX_TIGHTENING {
                     break;
                 }
             }
-            match self.improve_solution(step, None) {
+            match self.improve_solution(step, None)? {
                 Some(e) => earlier = e,
                 None => break,
             }
             self.update_ratios(load_factor);
         }
         self.ranking.undecided += 1;
+        Ok(())
     }
 
     /// Improves the current solution by Krylov iterations to the relative
@@ -127,9 +128,11 @@ impl Run<'_> {
         &mut self,
         step: usize,
         target: Option<f64>,
-    ) -> Option<Option<Vec<f64>>> {
+    ) -> Result<Option<Option<Vec<f64>>>, Error> {
         let (pipeline, m) = self.system.parts();
-        let improved = pipeline.improve(m, &self.solve_rhs, &self.x, target)?;
+        let Some(improved) = pipeline.improve(m, &self.solve_rhs, &self.x, target)? else {
+            return Ok(None);
+        };
         self.x = improved.x;
         let u = self.unit_displacement();
         self.unit_reactions = reactions(&self.model, &self.disc, &self.dofs, &self.f_ext, &u, 1.0);
@@ -138,7 +141,7 @@ impl Run<'_> {
             bonds_broken: 0,
             report: improved.report,
         });
-        Some(improved.earlier)
+        Ok(Some(improved.earlier))
     }
 
     /// The ratios at λ = 1 of the free unknowns `x`.

@@ -15,7 +15,7 @@ impl Run<'_> {
         let mut load_factor = 0.0;
         for event in 1..=self.settings.max_events {
             self.update_ratios(1.0);
-            self.decide_ranking(event);
+            self.decide_ranking(event)?;
             let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
             let critical = if largest > 0.0 {
                 1.0 / largest
@@ -155,7 +155,7 @@ impl Run<'_> {
         loop {
             self.update_ratios(load_factor);
             if intermediate {
-                self.decide_threshold(step, load_factor);
+                self.decide_threshold(step, load_factor)?;
             }
             let largest = self.ratios.iter().fold(0.0f64, |m, &r| m.max(r));
             let past = (resolves > 0)
@@ -165,7 +165,7 @@ impl Run<'_> {
             let last = resolves == self.settings.max_resolves;
             if intermediate && (largest < 1.0 || past.is_some() || last) {
                 // The state the step ends in: to the full tolerance, decided again.
-                self.complete_solution(step);
+                self.complete_solution(step)?;
                 intermediate = false;
                 continue;
             }
@@ -204,7 +204,7 @@ impl Run<'_> {
             intermediate = loose && self.solves.last().is_some_and(|s| s.report.iterations > 0);
             if outcome.is_some() || self.separated() {
                 if intermediate {
-                    self.complete_solution(step);
+                    self.complete_solution(step)?;
                 }
                 let settled = outcome.is_none();
                 return Ok((outcome, settled));
@@ -214,9 +214,9 @@ impl Run<'_> {
 
     /// Improves an intermediate re-solve's solution to the full tolerance
     /// (a state that will be recorded).
-    fn complete_solution(&mut self, step: usize) {
+    fn complete_solution(&mut self, step: usize) -> Result<(), Error> {
         let target = self.system.pipeline.full_tolerance();
-        let _ = self.improve_solution(step, Some(target));
+        self.improve_solution(step, Some(target)).map(|_| ())
     }
 
     /// The ratio of every bond at `load_factor` for the current bonds.
@@ -284,8 +284,19 @@ impl Run<'_> {
     }
 
     /// Hands a record to the observer (with the notes so far and the
-    /// progress), and a snapshot when the scene asks for one.
+    /// progress), and a snapshot when the scene asks for one. On the `petsc`
+    /// route only rank 0 writes: a failed write there stops every process.
     pub(super) fn observe(
+        &mut self,
+        observer: &mut dyn Observer,
+        record: &StepRecord,
+    ) -> Result<(), Error> {
+        let observed = self.observe_here(observer, record);
+        agreed(&self.scene.solver, observed)
+    }
+
+    /// [`Run::observe`] on this process.
+    fn observe_here(
         &mut self,
         observer: &mut dyn Observer,
         record: &StepRecord,

@@ -68,6 +68,7 @@ use crate::assembly::pattern::Pattern;
 use crate::error::{Error, NumericalError};
 use crate::scene::solver::PetscSolver;
 use serde::Serialize;
+use std::cell::Cell;
 use std::ffi::{c_char, c_int, CStr};
 use std::ptr::{null, null_mut};
 
@@ -141,7 +142,7 @@ pub struct PetscReport {
 /// What a re-solve from an initial guess did ([`Solver::solve_from`]).
 pub(super) struct Resolved {
     pub(super) iterations: usize,
-    /// `‖b − K x‖/‖b‖` (infinite when not converged).
+    /// `‖b − K x‖/‖b‖` of the last iterate.
     pub(super) residual: f64,
     /// Reached the tolerance within the iterations allowed.
     pub(super) converged: bool,
@@ -172,9 +173,12 @@ fn gather(v: ffi::Vec, rows: usize, numbering: &Numbering, x: &mut [f64]) -> Res
 /// What the Krylov monitor [`keep_checkpoint`] keeps: the first iterate
 /// whose residual norm is at most `threshold` (absolute; negative: none is
 /// wanted), copied into `iterate`.
+///
+/// PETSc holds a pointer to it while the solver exists, so its fields change
+/// through shared references only (`Cell`).
 struct Checkpoint {
-    threshold: f64,
-    kept: bool,
+    threshold: Cell<f64>,
+    kept: Cell<bool>,
     iterate: Vector,
 }
 
@@ -189,11 +193,11 @@ unsafe extern "C" fn keep_checkpoint(
 ) -> ffi::PetscErrorCode {
     // SAFETY: `context` is the `Checkpoint` the solver owns, alive while its
     // KSP is, and PETSc calls the monitor from the solve on this thread only.
-    let checkpoint = unsafe { &mut *(context as *mut Checkpoint) };
-    if checkpoint.kept || !(norm <= checkpoint.threshold) {
+    let checkpoint = unsafe { &*(context as *const Checkpoint) };
+    if checkpoint.kept.get() || !(norm <= checkpoint.threshold.get()) {
         return 0;
     }
-    checkpoint.kept = true;
+    checkpoint.kept.set(true);
     // SAFETY: a live KSP in its solve and a vector of its layout.
     unsafe { ffi::KSPBuildSolution(ksp, checkpoint.iterate.0, null_mut()) }
 }
@@ -341,14 +345,14 @@ impl Solver {
         call!(MatCreateVecs(matrix.0, &mut x.0, &mut b.0))?;
         let mut iterate = Vector(null_mut());
         call!(VecDuplicate(x.0, &mut iterate.0))?;
-        let mut checkpoint = Box::new(Checkpoint {
-            threshold: -1.0,
-            kept: false,
+        let checkpoint = Box::new(Checkpoint {
+            threshold: Cell::new(-1.0),
+            kept: Cell::new(false),
             iterate,
         });
         let mut krylov = Krylov(null_mut());
         call!(KSPCreate(comm, &mut krylov.0))?;
-        let context = &mut *checkpoint as *mut Checkpoint as *mut std::ffi::c_void;
+        let context = &*checkpoint as *const Checkpoint as *mut std::ffi::c_void;
         call!(KSPMonitorSet(krylov.0, keep_checkpoint, context, None))?;
         call!(KSPSetOperators(krylov.0, matrix.0, matrix.0))?;
         if symmetric {
@@ -469,11 +473,13 @@ impl Solver {
     }
 
     /// Re-solves `K x = rhs` from the initial guess `x` (the whole vector on
-    /// every process, overwritten by the answer) with the preconditioner as
-    /// it was built, to the relative residual `tolerance` within `cap`
-    /// iterations. With a `checkpoint` (above `tolerance`) it also keeps the
-    /// first iterate whose relative residual is at most that
-    /// ([`Resolved::earlier`]; the initial guess if it already is).
+    /// every process, overwritten by the last iterate) with the
+    /// preconditioner as it was built, to the relative residual `tolerance`
+    /// within `cap` iterations: converged when PETSc's test passed and the
+    /// true residual `‖b − K x‖/‖b‖` is within `tolerance`, as dhpd's own CG
+    /// asks. With a `checkpoint` (above `tolerance`) it also keeps the first
+    /// iterate whose relative residual is at most that ([`Resolved::earlier`];
+    /// the initial guess if it already is, none if no iteration ran).
     pub(super) fn solve_from(
         &mut self,
         rhs: &[f64],
@@ -491,8 +497,9 @@ impl Solver {
         self.x.write(guess, owned.len())?;
         let mut norm_b = 0.0;
         call!(VecNorm(self.b.0, ffi::NORM_2, &mut norm_b))?;
-        self.checkpoint.threshold = checkpoint.map_or(-1.0, |c| c * norm_b);
-        self.checkpoint.kept = false;
+        let keep = &self.checkpoint;
+        keep.threshold.set(checkpoint.map_or(-1.0, |c| c * norm_b));
+        keep.kept.set(false);
         call!(KSPSetInitialGuessNonzero(self.krylov.0, ffi::PETSC_TRUE))?;
         call!(KSPSetReusePreconditioner(self.krylov.0, ffi::PETSC_TRUE))?;
         call!(KSPSetTolerances(
@@ -502,25 +509,19 @@ impl Solver {
             ffi::PETSC_DEFAULT,
             petsc_int(cap.max(1), "iterations")?
         ))?;
-        call!(KSPSolve(self.krylov.0, self.b.0, self.x.0))?;
-        self.checkpoint.threshold = -1.0;
+        let solved = call!(KSPSolve(self.krylov.0, self.b.0, self.x.0));
+        keep.threshold.set(-1.0);
+        solved?;
         let (mut iterations, mut reason) = (0, 0);
         call!(KSPGetIterationNumber(self.krylov.0, &mut iterations))?;
         call!(KSPGetConvergedReason(self.krylov.0, &mut reason))?;
         let iterations = iterations as usize;
         self.report = Some(self.report(iterations, reason)?);
-        if reason <= 0 {
-            return Ok(Resolved {
-                iterations,
-                residual: f64::INFINITY,
-                converged: false,
-                earlier: None,
-            });
-        }
-        let earlier = match self.checkpoint.kept {
+        let earlier = match keep.kept.get() && iterations > 0 {
             true => {
                 let mut at_checkpoint = vec![0.0; x.len()];
-                gather(self.checkpoint.iterate.0, self.global_rows, &self.numbering, &mut at_checkpoint)?;
+                let iterate = keep.iterate.0;
+                gather(iterate, self.global_rows, &self.numbering, &mut at_checkpoint)?;
                 Some(at_checkpoint)
             }
             false => None,
@@ -530,7 +531,7 @@ impl Solver {
         Ok(Resolved {
             iterations,
             residual,
-            converged: true,
+            converged: reason > 0 && residual <= tolerance,
             earlier,
         })
     }

@@ -74,7 +74,7 @@ impl Petsc {
 impl Drop for Petsc {
     fn drop(&mut self) {
         // SAFETY: initialised by `init`. PETSc objects live in a `Solver`,
-        // which a static solve drops before it returns.
+        // which the static and fracture drivers drop before they return.
         unsafe { ffi::PetscFinalize() };
     }
 }
