@@ -78,6 +78,14 @@ fn print_fracture(scene: &Scene, s: &QuasiStaticSolution) {
         count(Route::Reuse),
         s.outcome.describe()
     );
+    #[cfg(feature = "mpi")]
+    if let Some(p) = &s.petsc {
+        println!(
+            "PETSc: {} + {} on {} process(es), {} rows (a fresh factorisation is a fresh set-up \
+             of the preconditioner; re-solves reuse it)",
+            p.ksp, p.pc, p.processes, p.rows
+        );
+    }
     let ranking = &s.ranking;
     if ranking.tightened + ranking.undecided > 0 {
         println!(

@@ -202,6 +202,15 @@ unsafe extern "C" fn keep_checkpoint(
     unsafe { ffi::KSPBuildSolution(ksp, checkpoint.iterate.0, null_mut()) }
 }
 
+/// The entry of dhpd's `values` in a PETSc row holding the free unknown `k`
+/// (zero in an identity row).
+fn of_row(values: &[f64], k: u32) -> f64 {
+    match k {
+        PRESCRIBED => 0.0,
+        k => values[k as usize],
+    }
+}
+
 /// Owns a `Mat`.
 struct Matrix(ffi::Mat);
 /// Owns a `Vec`.
@@ -489,12 +498,7 @@ impl Solver {
         checkpoint: Option<f64>,
     ) -> Result<Resolved, Error> {
         self.write_rhs(rhs)?;
-        let owned = &self.owned;
-        let guess = |r: usize| match owned[r] {
-            PRESCRIBED => 0.0,
-            k => x[k as usize],
-        };
-        self.x.write(guess, owned.len())?;
+        self.write_x(x)?;
         let mut norm_b = 0.0;
         call!(VecNorm(self.b.0, ffi::NORM_2, &mut norm_b))?;
         let keep = &self.checkpoint;
@@ -539,25 +543,20 @@ impl Solver {
     /// `‖rhs − K x‖/‖rhs‖` with PETSc's product.
     pub(super) fn residual_of(&mut self, rhs: &[f64], x: &[f64]) -> Result<f64, Error> {
         self.write_rhs(rhs)?;
-        let owned = &self.owned;
-        self.x.write(
-            |r| match owned[r] {
-                PRESCRIBED => 0.0,
-                k => x[k as usize],
-            },
-            owned.len(),
-        )?;
+        self.write_x(x)?;
         self.residual()
     }
 
     /// Writes this process's rows of `rhs` into `b` (zero in identity rows).
     fn write_rhs(&mut self, rhs: &[f64]) -> Result<(), Error> {
         let owned = &self.owned;
-        let value = |r: usize| match owned[r] {
-            PRESCRIBED => 0.0,
-            k => rhs[k as usize],
-        };
-        self.b.write(value, owned.len())
+        self.b.write(|r| of_row(rhs, owned[r]), owned.len())
+    }
+
+    /// Writes this process's rows of `x` into PETSc's `x` (zero in identity rows).
+    fn write_x(&mut self, x: &[f64]) -> Result<(), Error> {
+        let owned = &self.owned;
+        self.x.write(|r| of_row(x, owned[r]), owned.len())
     }
 
     /// `‖b − K x‖/‖b‖` of the last solve, with PETSc's product.
