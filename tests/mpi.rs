@@ -89,6 +89,17 @@ fn displacements(out: &Path) -> Vec<Vec<f64>> {
         .collect()
 }
 
+/// Runs the scene `name` with the default single-process route (its
+/// `method = "petsc"` removed) into `dir`; returns the output directory.
+fn run_reference(dir: &Path, name: &str) -> PathBuf {
+    let text = std::fs::read_to_string(scene_path(name)).unwrap();
+    let reference_scene = dir.join(format!("{name}_reference.toml"));
+    std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
+    let reference_out = dir.join(format!("{name}_reference"));
+    run(&reference_scene, &reference_out, None);
+    reference_out
+}
+
 fn summary(out: &Path) -> serde_json::Value {
     let text = std::fs::read_to_string(out.join("summary.json")).expect("summary.json");
     serde_json::from_str(&text).expect("JSON")
@@ -102,11 +113,7 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
     for name in SCENES {
         let scene = scene_path(name);
         // The reference: the same scene with the default route.
-        let text = std::fs::read_to_string(&scene).unwrap();
-        let reference_scene = dir.join(format!("{name}_reference.toml"));
-        std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
-        let reference_out = dir.join(format!("{name}_reference"));
-        run(&reference_scene, &reference_out, None);
+        let reference_out = run_reference(&dir, name);
         let reference = displacements(&reference_out);
         let reference_counts = summary(&reference_out)["counts"].clone();
         for processes in [1, 2, 3] {
@@ -190,11 +197,7 @@ fn mumps_on_one_and_two_processes_matches_the_single_process_solve() {
     // Partial constraints (identity rows) and a non-symmetric K.
     for name in ["plate_hole", "shear_hole"] {
         let text = std::fs::read_to_string(scene_path(name)).unwrap();
-        let reference_scene = dir.join(format!("{name}_reference.toml"));
-        std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
-        let reference_out = dir.join(format!("{name}_reference"));
-        run(&reference_scene, &reference_out, None);
-        let reference = displacements(&reference_out);
+        let reference = displacements(&run_reference(&dir, name));
         let scene = dir.join(format!("{name}_mumps.toml"));
         let mumps = "method = \"petsc\"\npetsc_solver = \"mumps\"";
         std::fs::write(&scene, text.replace("method = \"petsc\"", mumps)).unwrap();
@@ -271,11 +274,7 @@ fn petsc_fracture_breaks_the_same_bonds_on_one_two_and_three_processes() {
     let mut failures = Vec::new();
     for name in FRACTURE_SCENES {
         let scene = scene_path(name);
-        let text = std::fs::read_to_string(&scene).unwrap();
-        let reference_scene = dir.join(format!("{name}_reference.toml"));
-        std::fs::write(&reference_scene, text.replace("method = \"petsc\"", "")).unwrap();
-        let reference_out = dir.join(format!("{name}_reference"));
-        run(&reference_scene, &reference_out, None);
+        let reference_out = run_reference(&dir, name);
         let reference = records(&reference_out);
         let reference_outcome = summary(&reference_out)["outcome"].clone();
         let number = |r: &std::collections::HashMap<String, String>, key: &str| -> f64 {

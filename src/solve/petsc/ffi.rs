@@ -34,8 +34,7 @@ pub type PC = *mut Opaque;
 
 /// A Krylov monitor: called with the iteration and the residual norm of the
 /// convergence test after every iteration (and before the first).
-pub type Monitor =
-    unsafe extern "C" fn(KSP, PetscInt, PetscReal, *mut c_void) -> PetscErrorCode;
+pub type Monitor = unsafe extern "C" fn(KSP, PetscInt, PetscReal, *mut c_void) -> PetscErrorCode;
 
 /// `InsertMode::INSERT_VALUES`.
 pub const INSERT_VALUES: c_int = 1;
@@ -134,10 +133,7 @@ extern "C" {
     pub fn MatSetNearNullSpace(mat: Mat, space: MatNullSpace) -> PetscErrorCode;
     pub fn MatDestroy(mat: *mut Mat) -> PetscErrorCode;
     pub fn MatMult(mat: Mat, x: Vec, y: Vec) -> PetscErrorCode;
-    pub fn MatNullSpaceCreateRigidBody(
-        coords: Vec,
-        space: *mut MatNullSpace,
-    ) -> PetscErrorCode;
+    pub fn MatNullSpaceCreateRigidBody(coords: Vec, space: *mut MatNullSpace) -> PetscErrorCode;
     pub fn MatNullSpaceDestroy(space: *mut MatNullSpace) -> PetscErrorCode;
 
     pub fn VecGetArray(v: Vec, a: *mut *mut PetscScalar) -> PetscErrorCode;
@@ -148,11 +144,8 @@ extern "C" {
     pub fn VecDuplicate(v: Vec, copy: *mut Vec) -> PetscErrorCode;
     pub fn VecAYPX(y: Vec, beta: PetscScalar, x: Vec) -> PetscErrorCode;
     pub fn VecNorm(x: Vec, kind: c_int, value: *mut PetscReal) -> PetscErrorCode;
-    pub fn VecScatterCreateToAll(
-        v: Vec,
-        scatter: *mut VecScatter,
-        all: *mut Vec,
-    ) -> PetscErrorCode;
+    pub fn VecScatterCreateToAll(v: Vec, scatter: *mut VecScatter, all: *mut Vec)
+        -> PetscErrorCode;
     pub fn VecScatterBegin(
         scatter: VecScatter,
         x: Vec,

@@ -115,8 +115,8 @@ mod processes;
 
 pub(crate) use partition::{assembled_columns, asymmetry, mean_diagonal};
 use partition::{changed_rows, local_rows, petsc_int, LocalRows, Numbering, SomeRows};
-use processes::{comm_query, ensure_initialized, sum_each_over_processes};
 pub(crate) use processes::sum_over_processes;
+use processes::{comm_query, ensure_initialized, sum_each_over_processes};
 pub use processes::{on_every_process, share_path, Petsc};
 
 /// What a PETSc solve used and did (`summary.json`).
@@ -306,23 +306,14 @@ impl Solver {
         );
         let numbering = Numbering::new(pattern, layout.dofs, layout.x, processes)?;
         let d = layout.d();
-        let (first, last) = (
-            numbering.bounds[rank] * d,
-            numbering.bounds[rank + 1] * d,
-        );
+        let (first, last) = (numbering.bounds[rank] * d, numbering.bounds[rank + 1] * d);
         let LocalRows {
             offsets,
             columns,
             values: entries,
             owned,
             stored,
-        } = on_every_process(local_rows(
-            pattern,
-            values,
-            layout,
-            &numbering,
-            first..last,
-        ))?;
+        } = on_every_process(local_rows(pattern, values, layout, &numbering, first..last))?;
         let stored_entries = sum_over_processes(stored as f64) as usize;
         let mut per_process = vec![0.0; processes];
         per_process[rank] = columns.len() as f64;
@@ -451,17 +442,17 @@ impl Solver {
     ) -> Result<(), Error> {
         let range = self.range.clone();
         let rows = on_every_process(match changed {
-            Some(changed) => {
-                changed_rows(pattern, values, layout, &self.numbering, range, changed)
+            Some(changed) => changed_rows(pattern, values, layout, &self.numbering, range, changed),
+            None => {
+                local_rows(pattern, values, layout, &self.numbering, range.clone()).map(|all| {
+                    SomeRows {
+                        rows: (range.start..range.end).map(|r| r as PetscInt).collect(),
+                        offsets: all.offsets.iter().map(|&o| o as usize).collect(),
+                        columns: all.columns,
+                        values: all.values,
+                    }
+                })
             }
-            None => local_rows(pattern, values, layout, &self.numbering, range.clone()).map(
-                |all| SomeRows {
-                    rows: (range.start..range.end).map(|r| r as PetscInt).collect(),
-                    offsets: all.offsets.iter().map(|&o| o as usize).collect(),
-                    columns: all.columns,
-                    values: all.values,
-                },
-            ),
         })?;
         let set = (0..rows.rows.len()).try_for_each(|r| {
             let (a, b) = (rows.offsets[r], rows.offsets[r + 1]);
@@ -525,7 +516,12 @@ impl Solver {
             true => {
                 let mut at_checkpoint = vec![0.0; x.len()];
                 let iterate = keep.iterate.0;
-                gather(iterate, self.global_rows, &self.numbering, &mut at_checkpoint)?;
+                gather(
+                    iterate,
+                    self.global_rows,
+                    &self.numbering,
+                    &mut at_checkpoint,
+                )?;
                 Some(at_checkpoint)
             }
             false => None,

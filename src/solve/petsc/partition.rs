@@ -11,6 +11,34 @@ use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::assembly::pattern::Pattern;
 use crate::error::{Error, NumericalError};
 
+/// The numbering of `dofs` over the processes of the run and this process's
+/// rank (every process computes the same numbering).
+fn this_part(
+    pattern: &Pattern,
+    dofs: &DofMap,
+    x: &[[f64; 3]],
+) -> Result<(Numbering, usize), Error> {
+    ensure_initialized()?;
+    let (rank, processes) = (
+        comm_query(ffi::MPI_Comm_rank),
+        comm_query(ffi::MPI_Comm_size),
+    );
+    Ok((Numbering::new(pattern, dofs, x, processes)?, rank))
+}
+
+/// The free unknowns of this process's points, in increasing order.
+fn own_unknowns(pattern: &Pattern, layout: Layout) -> Result<Vec<usize>, Error> {
+    let dofs = layout.dofs;
+    let (numbering, rank) = this_part(pattern, dofs, layout.x)?;
+    Ok(numbering
+        .part(rank)
+        .iter()
+        .flat_map(|&q| (0..dofs.d).map(move |c| dofs.free_index[3 * q + c]))
+        .filter(|&k| k != PRESCRIBED)
+        .map(|k| k as usize)
+        .collect())
+}
+
 /// The point columns of `K` this process assembles (`pattern`: the point
 /// level): those of its own points ([`Numbering`]) and of every point coupled
 /// to them (its ghost points: within a horizon for the bond-based model, two
@@ -20,15 +48,13 @@ pub(crate) fn assembled_columns(
     dofs: &DofMap,
     x: &[[f64; 3]],
 ) -> Result<Vec<bool>, Error> {
-    ensure_initialized()?;
-    let (rank, processes) = (
-        comm_query(ffi::MPI_Comm_rank),
-        comm_query(ffi::MPI_Comm_size),
-    );
-    let numbering = Numbering::new(pattern, dofs, x, processes)?;
+    let (numbering, rank) = this_part(pattern, dofs, x)?;
     let mut keep = vec![false; pattern.row_offsets.len() - 1];
-    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
-        pattern.rows(q).iter().for_each(|&p| keep[p as usize] = true);
+    for &q in numbering.part(rank) {
+        pattern
+            .rows(q)
+            .iter()
+            .for_each(|&p| keep[p as usize] = true);
     }
     Ok(keep)
 }
@@ -37,75 +63,65 @@ pub(crate) fn assembled_columns(
 /// columns, [`assembled_columns`]): each process sums over its own columns,
 /// whose transposed entries lie in its ghost columns (a collective call).
 pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
-    ensure_initialized()?;
-    let (rank, processes) = (
-        comm_query(ffi::MPI_Comm_rank),
-        comm_query(ffi::MPI_Comm_size),
-    );
-    let dofs = layout.dofs;
-    let numbering = Numbering::new(pattern, dofs, layout.x, processes)?;
+    let own = own_unknowns(pattern, layout)?;
     let (mut skew, mut total) = (0.0, 0.0);
     // Own columns k in increasing order (a part's points are in point order):
     // row k of every column r is reached in increasing order too, so a cursor
     // per column finds it by moving forward (past the rows of other
     // processes' points), as a transposition.
     let mut cursor = pattern.col_ptr.clone();
-    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
-        for c in 0..dofs.d {
-            let k = dofs.free_index[3 * q + c];
-            if k == PRESCRIBED {
-                continue;
+    for k in own {
+        for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
+            let r = pattern.row_idx[p];
+            let (t, end) = (&mut cursor[r], pattern.col_ptr[r + 1]);
+            while *t < end && pattern.row_idx[*t] < k {
+                *t += 1;
             }
-            let k = k as usize;
-            for p in pattern.col_ptr[k]..pattern.col_ptr[k + 1] {
-                let r = pattern.row_idx[p];
-                let (t, end) = (&mut cursor[r], pattern.col_ptr[r + 1]);
-                while *t < end && pattern.row_idx[*t] < k {
-                    *t += 1;
-                }
-                if *t == end || pattern.row_idx[*t] != k {
-                    return Err(NumericalError::Solver(format!(
-                        "column {r} of K lacks row {k} on this process (a defect of the \
-                         partition's ghost points)"
-                    ))
-                    .into());
-                }
-                skew += (values[p] - values[*t]).powi(2);
-                total += values[p] * values[p];
+            if *t == end || pattern.row_idx[*t] != k {
+                return Err(NumericalError::Solver(format!(
+                    "column {r} of K lacks row {k} on this process (a defect of the \
+                     partition's ghost points)"
+                ))
+                .into());
             }
+            skew += (values[p] - values[*t]).powi(2);
+            total += values[p] * values[p];
         }
     }
     let (skew, total) = (sum_over_processes(skew), sum_over_processes(total));
-    Ok(if total > 0.0 { (skew / total).sqrt() } else { 0.0 })
+    Ok(if total > 0.0 {
+        (skew / total).sqrt()
+    } else {
+        0.0
+    })
 }
 
 /// The mean `|K_kk|` over the free unknowns of a distributed `K` (`values`
 /// on this process's columns, [`assembled_columns`]), each process summing
 /// its own points' columns (a collective call).
-pub(crate) fn mean_diagonal(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
-    ensure_initialized()?;
-    let (rank, processes) = (
-        comm_query(ffi::MPI_Comm_rank),
-        comm_query(ffi::MPI_Comm_size),
-    );
-    let dofs = layout.dofs;
-    let numbering = Numbering::new(pattern, dofs, layout.x, processes)?;
-    let (mut sum, mut count) = (0.0, 0usize);
-    for &q in &numbering.points[numbering.bounds[rank]..numbering.bounds[rank + 1]] {
-        for c in 0..dofs.d {
-            let k = dofs.free_index[3 * q + c];
-            if k == PRESCRIBED {
-                continue;
-            }
-            let k = k as usize;
-            count += 1;
-            sum += (pattern.col_ptr[k]..pattern.col_ptr[k + 1])
+pub(crate) fn mean_diagonal(
+    pattern: &Pattern,
+    values: &[f64],
+    layout: Layout,
+) -> Result<f64, Error> {
+    let own = own_unknowns(pattern, layout)?;
+    let sum: f64 = own
+        .iter()
+        .map(|&k| {
+            (pattern.col_ptr[k]..pattern.col_ptr[k + 1])
                 .find(|&p| pattern.row_idx[p] == k)
-                .map_or(0.0, |p| values[p].abs());
-        }
-    }
-    let (sum, count) = (sum_over_processes(sum), sum_over_processes(count as f64));
-    Ok(if sum > 0.0 && count > 0.0 { sum / count } else { 1.0 })
+                .map_or(0.0, |p| values[p].abs())
+        })
+        .sum();
+    let (sum, count) = (
+        sum_over_processes(sum),
+        sum_over_processes(own.len() as f64),
+    );
+    Ok(if sum > 0.0 && count > 0.0 {
+        sum / count
+    } else {
+        1.0
+    })
 }
 
 /// `n` as a `PetscInt`, or an error naming `what` (32-bit indices).
@@ -133,6 +149,11 @@ pub(super) struct Numbering {
 }
 
 impl Numbering {
+    /// The points of process `rank`, in point order.
+    pub(super) fn part(&self, rank: usize) -> &[usize] {
+        &self.points[self.bounds[rank]..self.bounds[rank + 1]]
+    }
+
     /// The numbering of `dofs` on the points at `x` split over `processes`
     /// (`pattern`: its point level is enough, so that a process knows its
     /// points before it assembles). Every process computes the same one.
@@ -198,16 +219,24 @@ impl Numbering {
 /// turn in `points`, each in increasing point order, their sizes pushed to
 /// `sizes`. A cut across the body's longest side is the smallest of the
 /// straight cuts of a box, and with it the ghost layer of each process.
-fn bisect(points: &mut [usize], weight: &[usize], x: &[[f64; 3]], parts: usize, sizes: &mut Vec<usize>) {
+fn bisect(
+    points: &mut [usize],
+    weight: &[usize],
+    x: &[[f64; 3]],
+    parts: usize,
+    sizes: &mut Vec<usize>,
+) {
     if parts == 1 {
         points.sort_unstable();
         sizes.push(points.len());
         return;
     }
     let extent = |axis: usize| {
-        let (low, high) = points.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
-            (l.min(x[i][axis]), h.max(x[i][axis]))
-        });
+        let (low, high) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
+                (l.min(x[i][axis]), h.max(x[i][axis]))
+            });
         high - low
     };
     let axis = (0..3)
@@ -309,8 +338,7 @@ pub(super) fn local_rows(
             next[r] += 1;
         }
     }
-    let identity =
-        sum_over_processes(diagonal) / sum_over_processes(free_rows as f64).max(1.0);
+    let identity = sum_over_processes(diagonal) / sum_over_processes(free_rows as f64).max(1.0);
     for (r, &k) in owned.iter().enumerate() {
         if k == PRESCRIBED {
             local_values[offsets[r]] = identity;

@@ -46,7 +46,8 @@ impl Petsc {
                 })
             })
             .collect::<Result<Vec<_>, _>>()?;
-        let mut pointers: Vec<*mut c_char> = strings.iter().map(|s| s.as_ptr().cast_mut()).collect();
+        let mut pointers: Vec<*mut c_char> =
+            strings.iter().map(|s| s.as_ptr().cast_mut()).collect();
         pointers.push(null_mut());
         let mut args = Box::new(Arguments {
             argc: strings.len() as c_int,
@@ -136,10 +137,22 @@ pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
     // broadcast's size (the length first); MPI's default error handler aborts.
     unsafe {
         let byte = &raw const ffi::ompi_mpi_byte;
-        ffi::MPI_Bcast(length.as_mut_ptr().cast(), 8, byte, 0, ffi::PETSC_COMM_WORLD);
+        ffi::MPI_Bcast(
+            length.as_mut_ptr().cast(),
+            8,
+            byte,
+            0,
+            ffi::PETSC_COMM_WORLD,
+        );
         bytes.resize(u64::from_le_bytes(length) as usize, 0);
         let count = c_int::try_from(bytes.len()).unwrap_or(c_int::MAX);
-        ffi::MPI_Bcast(bytes.as_mut_ptr().cast(), count, byte, 0, ffi::PETSC_COMM_WORLD);
+        ffi::MPI_Bcast(
+            bytes.as_mut_ptr().cast(),
+            count,
+            byte,
+            0,
+            ffi::PETSC_COMM_WORLD,
+        );
     }
     Ok(PathBuf::from(std::ffi::OsString::from_vec(bytes)))
 }
