@@ -878,7 +878,7 @@ impl Pipeline {
     /// [`Pipeline::resolve`] on the `petsc` route: the new values of `K`
     /// handed to PETSc in place, its Krylov method warm-started from `x0`
     /// with the preconditioner (GAMG's hierarchy) built for an earlier `K`,
-    /// stopping at the checkpoint ([`Solved::earlier`]) on the way; past the
+    /// keeping the checkpoint iterate ([`Solved::earlier`]) on the way; past the
     /// refactorisation threshold (or a true residual above the tolerance),
     /// PETSc sets everything up afresh.
     #[cfg(feature = "mpi")]
