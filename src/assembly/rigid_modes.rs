@@ -10,12 +10,23 @@
 //! through a point), before any factorisation.
 
 use super::dofs::{DofMap, PRESCRIBED};
+use crate::discretization::share::Processes;
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
 
-/// Errors if a connected body can move rigidly without changing any prescribed value.
-pub fn check(disc: &Discretization, dofs: &DofMap) -> Result<(), NumericalError> {
-    for points in bodies(disc) {
+/// Errors if a connected body can move rigidly without changing any
+/// prescribed value. A body discretised over `processes` (each holding some
+/// families) has its bodies found together ([`shared_bodies`]).
+pub fn check(
+    disc: &Discretization,
+    dofs: &DofMap,
+    processes: Option<&dyn Processes>,
+) -> Result<(), NumericalError> {
+    let bodies = match processes {
+        Some(processes) if disc.share.is_some() => shared_bodies(disc, processes),
+        _ => bodies(disc),
+    };
+    for points in bodies {
         check_body(disc, dofs, &points)?;
     }
     Ok(())
@@ -32,15 +43,50 @@ pub fn unheld_bodies(disc: &Discretization, dofs: &DofMap) -> Vec<Vec<usize>> {
 
 /// The connected components of the intact-bond graph.
 fn bodies(disc: &Discretization) -> Vec<Vec<usize>> {
+    let mut roots = local_roots(disc);
+    let n = disc.points.len();
+    let root: Vec<usize> = (0..n).map(|i| find(&mut roots, i)).collect();
+    group(&root)
+}
+
+/// The connected components of the intact-bond graph of a body whose
+/// families are spread over `processes` (a collective call): every bond is
+/// held by the process of its owner, so the union of the processes' graphs is
+/// the body's. Each process labels every point with the least point of its
+/// component among the bonds it holds; the processes take the least label of
+/// every point and relabel each local component by its least member's label,
+/// until no label changes (as often as a component crosses processes, plus one).
+fn shared_bodies(disc: &Discretization, processes: &dyn Processes) -> Vec<Vec<usize>> {
+    let n = disc.points.len();
+    let mut roots = local_roots(disc);
+    let root: Vec<usize> = (0..n).map(|i| find(&mut roots, i)).collect();
+    let mut label: Vec<f64> = (0..n).map(|i| i as f64).collect();
+    loop {
+        processes.min(&mut label);
+        let mut least = vec![f64::INFINITY; n];
+        for i in 0..n {
+            least[root[i]] = least[root[i]].min(label[i]);
+        }
+        let mut changed = [0.0];
+        for i in 0..n {
+            if least[root[i]] < label[i] {
+                label[i] = least[root[i]];
+                changed[0] += 1.0;
+            }
+        }
+        processes.sum(&mut changed);
+        if changed[0] == 0.0 {
+            break;
+        }
+    }
+    // Labels are point indices, exact in a double.
+    group(&label.iter().map(|&l| l as usize).collect::<Vec<_>>())
+}
+
+/// The union-find forest of the intact bonds this process holds.
+fn local_roots(disc: &Discretization) -> Vec<usize> {
     let n = disc.points.len();
     let mut parent: Vec<usize> = (0..n).collect();
-    fn find(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
     for i in 0..n {
         for b in disc.bonds.owned_by(i) {
             if disc.bonds.intact[b] {
@@ -52,10 +98,23 @@ fn bodies(disc: &Discretization) -> Vec<Vec<usize>> {
             }
         }
     }
+    parent
+}
+
+/// The root of `i` in a union-find forest (halving the path).
+fn find(parent: &mut [usize], mut i: usize) -> usize {
+    while parent[i] != i {
+        parent[i] = parent[parent[i]];
+        i = parent[i];
+    }
+    i
+}
+
+/// The points grouped by `label`, groups in order of their labels.
+fn group(label: &[usize]) -> Vec<Vec<usize>> {
     let mut members: std::collections::BTreeMap<usize, Vec<usize>> = Default::default();
-    for i in 0..n {
-        let root = find(&mut parent, i);
-        members.entry(root).or_default().push(i);
+    for (i, &l) in label.iter().enumerate() {
+        members.entry(l).or_default().push(i);
     }
     members.into_values().collect()
 }

@@ -21,6 +21,7 @@ pub mod groups;
 mod neighbours;
 mod overlap;
 pub mod partial_volume;
+pub mod share;
 
 use crate::error::{Error, InputError, NumericalError};
 use crate::geometry::grid::{self, RawPoint, Source};
@@ -30,6 +31,7 @@ use crate::notes::Notes;
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
 use crate::vector::{norm, sub};
 use groups::PointGroup;
+use share::{agreed, Distribution, Processes, Share};
 use std::ops::Range;
 
 /// Per-point data, structure of arrays.
@@ -165,6 +167,10 @@ pub struct Discretization {
     pub removed_isolated: usize,
     /// Named point sets from the physical groups of imported meshes.
     pub groups: Vec<PointGroup>,
+    /// This process's share when the body is discretised over several
+    /// processes ([`share`]): only the families of `share.searched` are
+    /// here. `None`: every bond is.
+    pub share: Option<Share>,
 }
 
 /// The points of a scene before bonds are found, with the named groups of its meshes.
@@ -181,7 +187,7 @@ pub struct RawBody {
 /// start from their setup).
 #[cfg(feature = "fixtures")]
 pub fn build(scene: &Scene) -> Result<Discretization, Error> {
-    discretize(scene, generate_points(scene)?, &mut Notes::default())
+    discretize(scene, generate_points(scene)?, &mut Notes::default(), None)
 }
 
 /// Generates the raw points of the scene, holes removed, horizons set.
@@ -311,29 +317,54 @@ fn reject_duplicates(raw: &[RawPoint]) -> Result<(), InputError> {
 }
 
 /// Builds bonds for given points, applying the isolated-point policy (a
-/// warning in `notes` for the points it removes).
+/// warning in `notes` for the points it removes). With a `distribution`,
+/// this process searches only the families of its share ([`share`]), and
+/// every decision that needs the whole body (isolated points) is made together.
 pub fn discretize(
     scene: &Scene,
     body: RawBody,
     notes: &mut Notes,
+    distribution: Option<&Distribution>,
 ) -> Result<Discretization, Error> {
+    let processes = distribution.map(|s| s.processes);
     let d = scene.d();
     let RawBody {
         points: mut raw,
         mesh_groups,
     } = body;
     let mut removed_isolated = 0;
+    let rule = scene.discretization.volume_correction;
     loop {
         let points = Points::from_raw(&raw);
+        let share = distribution
+            .map(|s| {
+                let bodiless = Discretization {
+                    d,
+                    points: points.clone(),
+                    bonds: Bonds::default(),
+                    removed_isolated,
+                    groups: groups::resolve(&mesh_groups, &raw),
+                    share: None,
+                };
+                let free = (s.free_components)(&bodiless)?;
+                let largest = points.spacing.iter().copied().fold(0.0, f64::max);
+                let reach = partial_volume::PartialVolume { rule, d }.reach(largest);
+                let every_bond = scene.quasi_static.is_some();
+                let kind = scene.model.kind;
+                Share::new(s.processes, &points, &free, d, kind, reach, every_bond)
+            })
+            .transpose();
+        let share = agreed(processes, share)?;
         let bonds = neighbours::find_bonds(
             &points,
             d,
             &scene.cracks,
-            scene.discretization.volume_correction,
+            rule,
             scene.solver.memory_limit_bytes,
-        )?;
-        let touches = bonds.touch_counts(points.len());
-        let isolated: Vec<usize> = (0..points.len()).filter(|&i| touches[i] == 0).collect();
+            share.as_ref().map(|s| &s.searched[..]),
+        );
+        let bonds = agreed(processes, bonds)?;
+        let isolated = isolated_points(&bonds, points.len(), share.as_ref(), processes);
         if isolated.is_empty() {
             return Ok(Discretization {
                 d,
@@ -341,6 +372,7 @@ pub fn discretize(
                 bonds: bonds.with_transpose(points.len()),
                 points,
                 removed_isolated,
+                share,
             });
         }
         match scene.discretization.isolated_points {
@@ -376,4 +408,28 @@ pub fn discretize(
             }
         }
     }
+}
+
+/// The points no bond touches, in increasing order. With a `share`, each
+/// process decides for its own points (whose touching bonds it all holds)
+/// and the processes add up their answers (a collective call).
+fn isolated_points(
+    bonds: &Bonds,
+    n: usize,
+    share: Option<&Share>,
+    processes: Option<&dyn Processes>,
+) -> Vec<usize> {
+    let touches = bonds.touch_counts(n);
+    let mine = |i: usize| touches[i] == 0 && share.is_none_or(|s| s.owns(i));
+    let Some(processes) = processes.filter(|_| share.is_some()) else {
+        return (0..n).filter(|&i| mine(i)).collect();
+    };
+    let mut count = [(0..n).filter(|&i| mine(i)).count() as f64];
+    processes.sum(&mut count);
+    if count[0] == 0.0 {
+        return Vec::new();
+    }
+    let mut flags: Vec<f64> = (0..n).map(|i| f64::from(u8::from(mine(i)))).collect();
+    processes.sum(&mut flags);
+    (0..n).filter(|&i| flags[i] > 0.0).collect()
 }

@@ -25,21 +25,25 @@ pub const BYTES_PER_BOND: f64 = 29.0;
 /// point's horizon and spacing, then, during the search, against the bonds
 /// found so far, so a horizon that bonds far more points than the estimate
 /// (a coarse horizon over a fine region) is refused before the lists grow.
+///
+/// With `searched`, only the families of the points it flags are searched
+/// (a process's share of a distributed body); the others are left empty.
 pub fn find_bonds(
     points: &Points,
     d: usize,
     cracks: &[Crack],
     rule: VolumeCorrection,
     user_memory_limit: Option<f64>,
+    searched: Option<&[bool]>,
 ) -> Result<Bonds, Error> {
     let pv = PartialVolume { rule, d };
-    let estimate = estimated_bonds(points, d, pv);
+    let estimate = estimated_bonds(points, d, pv, searched);
     check_memory(
         || {
             format!(
                 "the bonds (an estimated {estimate:.3e} from the horizons and spacings, {:.0} per \
                  point)",
-                estimate / points.len() as f64
+                estimate / searched_count(points.len(), searched) as f64
             )
         },
         estimate * BYTES_PER_BOND,
@@ -53,9 +57,9 @@ pub fn find_bonds(
         found: AtomicUsize::new(0),
     };
     let families = match d {
-        1 => families::<1>(points, cracks, pv, &budget),
-        2 => families::<2>(points, cracks, pv, &budget),
-        _ => families::<3>(points, cracks, pv, &budget),
+        1 => families::<1>(points, cracks, pv, &budget, searched),
+        2 => families::<2>(points, cracks, pv, &budget, searched),
+        _ => families::<3>(points, cracks, pv, &budget, searched),
     }?;
     let mut offsets = Vec::with_capacity(points.len() + 1);
     offsets.push(0);
@@ -82,18 +86,24 @@ pub fn find_bonds(
 /// Expected number of bonds: each point's ball of radius `δ_i + reach`
 /// filled at its own spacing (boundaries ignored, so an over-estimate on
 /// uniform grids; a coarse horizon over finer points is caught by the count).
-fn estimated_bonds(points: &Points, d: usize, pv: PartialVolume) -> f64 {
+fn estimated_bonds(points: &Points, d: usize, pv: PartialVolume, searched: Option<&[bool]>) -> f64 {
     let ball = match d {
         1 => 2.0,
         2 => std::f64::consts::PI,
         _ => 4.0 / 3.0 * std::f64::consts::PI,
     };
     (0..points.len())
+        .filter(|&i| searched.is_none_or(|s| s[i]))
         .map(|i| {
             let h = points.spacing[i];
             ball * ((points.horizon[i] + pv.reach(h)) / h).powi(d as i32)
         })
         .sum()
+}
+
+/// The number of points whose families are searched.
+fn searched_count(n: usize, searched: Option<&[bool]>) -> usize {
+    searched.map_or(n, |s| s.iter().filter(|&&f| f).count()).max(1)
 }
 
 /// The running count of bonds found against the memory limit.
@@ -153,6 +163,7 @@ fn families<const K: usize>(
     cracks: &[Crack],
     pv: PartialVolume,
     budget: &Budget,
+    searched: Option<&[bool]>,
 ) -> Result<Vec<Family>, Error> {
     let reach = points
         .spacing
@@ -174,6 +185,9 @@ fn families<const K: usize>(
         .par_iter()
         .enumerate()
         .map(|(i, xi)| {
+            if searched.is_some_and(|s| !s[i]) {
+                return Ok(Vec::new());
+            }
             let delta = points.horizon[i];
             let radius = delta + reach;
             let found = tree

@@ -8,6 +8,7 @@
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::{external_forces, AppliedLoad};
 use crate::assembly::rigid_modes;
+use crate::discretization::share::{Distribution, Processes};
 use crate::discretization::{self, Discretization};
 use crate::error::{Error, InputError, NumericalError};
 use crate::notes::Notes;
@@ -66,7 +67,17 @@ impl Setup {
         let raw = discretization::generate_points(scene)?;
         timings.discretization = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let disc = discretization::discretize(scene, raw, notes)?;
+        let processes = distributed(scene);
+        let processes = processes.as_deref();
+        let free_components = |body: &Discretization| -> Result<Vec<usize>, Error> {
+            let dofs = DofMap::new(body, &scene.boundaries)?;
+            Ok((0..body.points.len()).map(|i| dofs.free_count(i)).collect())
+        };
+        let distribution = processes.map(|processes| Distribution {
+            processes,
+            free_components: &free_components,
+        });
+        let disc = discretization::discretize(scene, raw, notes, distribution.as_ref())?;
         timings.neighbour_search = t.elapsed().as_secs_f64();
         let dofs = DofMap::new(&disc, &scene.boundaries)?;
         dofs.overlap_notes().into_iter().for_each(|n| notes.push(n));
@@ -77,7 +88,7 @@ impl Setup {
         }
         if explicit.is_none_or(|m| m == DynamicsMethod::Relaxation) {
             // A static equilibrium (relaxation seeks one too) needs a held body.
-            rigid_modes::check(&disc, &dofs)?;
+            rigid_modes::check(&disc, &dofs, processes)?;
         }
         let plan = Plan::new(scene, &disc)?;
         Ok(Setup {
@@ -90,6 +101,18 @@ impl Setup {
             timings,
         })
     }
+}
+
+/// The processes a scene on the `petsc` route is discretised over, when the
+/// run has several ([`crate::discretization::share`]); `None` otherwise: one
+/// process, other routes, a build without the `mpi` feature.
+fn distributed(scene: &Scene) -> Option<Box<dyn Processes>> {
+    #[cfg(feature = "mpi")]
+    if scene.solver.method == crate::scene::SolverMethod::Petsc {
+        return crate::solve::petsc::Processes::of_run().map(|p| Box::new(p) as Box<dyn Processes>);
+    }
+    let _ = scene;
+    None
 }
 
 /// The points each requested profile and probe reads, resolved before solving.

@@ -3,7 +3,10 @@
 //! set (and, when the scene asks, the recovered stress).
 
 use super::setup::{Plan, Setup, Timings};
-use super::system::{agreed, check_range, reactions, right_hand_side, Reaction, System};
+use super::system::{
+    agreed, bond_counts, check_range, reactions, reports, right_hand_side, sum_shares,
+    total_bonds, Reaction, System,
+};
 use super::{forward, Observer};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::forces::internal_forces;
@@ -88,6 +91,8 @@ pub struct StaticSolution {
     pub counts: Counts,
     /// Recovered stress per point, when the scene asks for it.
     pub stress: Option<Vec<Block>>,
+    /// Intact bonds touching each point (as owner or neighbour).
+    pub bond_counts: Vec<u32>,
     /// The reduced system.
     pub system: LinearSystem,
     /// The points the outputs read.
@@ -105,7 +110,7 @@ impl Counts {
     ) -> Self {
         Counts {
             points: disc.points.len(),
-            bonds: disc.bonds.len(),
+            bonds: total_bonds(disc),
             dofs: dofs.n_free(),
             prescribed_dofs: disc.points.len() * disc.d - dofs.n_free(),
             nnz_k: pipeline.stored_entries(),
@@ -155,7 +160,7 @@ pub fn run(
     let mut notes = Notes::default();
     note_near_incompressible(scene, &mut notes);
     forward(&mut notes, observer);
-    let model = AnyModel::new(scene, &setup.disc)?;
+    let model = agreed(&scene.solver, AnyModel::new(scene, &setup.disc).map_err(Error::from))?;
     let result = solve_with(&model, scene, setup, &mut notes);
     forward(&mut notes, observer);
     result
@@ -238,8 +243,10 @@ fn solve_with(
     let u = dofs.expand(&solved.x);
     let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
     timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
-    let stress = recovered_stress(scene, model, &disc, &u)?;
+    let stress = agreed(&scene.solver, recovered_stress(scene, model, &disc, &u))?;
+    let stress = gather_stress(&disc, stress);
     let counts = Counts::of(&disc, &dofs, &system.pipeline, asymmetry, report);
+    let bond_counts = bond_counts(&disc);
     let residual = report.residual;
     Ok(StaticSolution {
         disc,
@@ -251,6 +258,7 @@ fn solve_with(
         timings,
         counts,
         stress,
+        bond_counts,
         system: LinearSystem {
             pattern: system.pipeline.into_pattern(),
             stiffness: system.stiffness,
@@ -261,7 +269,9 @@ fn solve_with(
 }
 
 /// The stress of every point (001 Eq. 32), when the scene asks for it; a
-/// non-finite one is refused, naming the point.
+/// non-finite one is refused, naming the point. On a body discretised over
+/// several processes each recovers its own points' and the processes add up
+/// the rest (a collective call, made after every process's check agreed).
 fn recovered_stress(
     scene: &Scene,
     model: &AnyModel,
@@ -274,7 +284,10 @@ fn recovered_stress(
     use rayon::prelude::*;
     let stress: Vec<Block> = (0..disc.points.len())
         .into_par_iter()
-        .map(|i| model.stress(disc, i, u).unwrap_or_default())
+        .map(|i| match reports(disc, i) {
+            true => model.stress(disc, i, u).unwrap_or_default(),
+            false => Block::default(),
+        })
         .collect();
     if let Some(i) = stress
         .iter()
@@ -289,4 +302,20 @@ fn recovered_stress(
         .into());
     }
     Ok(Some(stress))
+}
+
+/// Every point's stress summed over the processes of a body discretised
+/// over several (each holds its own points' and zeros: a collective call).
+fn gather_stress(disc: &Discretization, stress: Option<Vec<Block>>) -> Option<Vec<Block>> {
+    let mut stress = stress?;
+    if disc.share.is_some() {
+        let mut flat: Vec<f64> = stress.iter().flatten().flatten().copied().collect();
+        sum_shares(disc, &mut flat);
+        for (block, values) in stress.iter_mut().zip(flat.chunks(9)) {
+            for (r, row) in block.iter_mut().enumerate() {
+                row.copy_from_slice(&values[3 * r..3 * r + 3]);
+            }
+        }
+    }
+    Some(stress)
 }

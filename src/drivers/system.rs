@@ -122,7 +122,7 @@ fn stiffness_pattern(
     #[cfg(feature = "mpi")]
     if settings.method == SolverMethod::Petsc {
         return Pattern::with_columns(disc, dofs, coupling, limit, |points| {
-            crate::solve::petsc::assembled_columns(points, dofs, &disc.points.x)
+            crate::solve::petsc::assembled_columns(points, layout(disc, dofs))
         });
     }
     Ok(Pattern::new(disc, dofs, coupling, limit)?)
@@ -148,6 +148,8 @@ pub fn layout<'a>(disc: &'a Discretization, dofs: &'a DofMap) -> Layout<'a> {
     Layout {
         x: &disc.points.x,
         spacing: &disc.points.spacing,
+        #[cfg(feature = "mpi")]
+        part: disc.share.as_ref().map(|s| &s.part[..]),
         dofs,
     }
 }
@@ -193,6 +195,54 @@ pub fn right_hand_side<M: Model>(
         .collect()
 }
 
+/// The sum of every entry of `values` over the processes of a body
+/// discretised over several (`disc.share`: each process's own points'
+/// share of a sum), in place; on one process they stay as they are.
+pub fn sum_shares(disc: &Discretization, values: &mut [f64]) {
+    #[cfg(feature = "mpi")]
+    if disc.share.is_some() {
+        crate::solve::petsc::sum_each_over_processes(values);
+    }
+    let _ = (disc, values);
+}
+
+/// Whether point `i` is this process's to report (every point unless the
+/// body is discretised over several processes: [`Discretization::share`]).
+pub fn reports(disc: &Discretization, i: usize) -> bool {
+    disc.share.as_ref().is_none_or(|s| s.owns(i))
+}
+
+/// The bonds of the whole body (summed over the processes of a body
+/// discretised over several: each counts its own points' families).
+pub fn total_bonds(disc: &Discretization) -> usize {
+    if disc.share.is_none() {
+        return disc.bonds.len();
+    }
+    let own: usize = (0..disc.points.len())
+        .filter(|&i| reports(disc, i))
+        .map(|i| disc.bonds.owned_by(i).len())
+        .sum();
+    let mut total = [own as f64];
+    sum_shares(disc, &mut total);
+    total[0] as usize
+}
+
+/// The intact bonds touching each point, as owner or as neighbour (on a body
+/// discretised over several processes, each counts its own points' and the
+/// counts are summed: a collective call).
+pub fn bond_counts(disc: &Discretization) -> Vec<u32> {
+    let n = disc.points.len();
+    let counts = disc.bonds.touch_counts(n);
+    if disc.share.is_none() {
+        return counts;
+    }
+    let mut mine: Vec<f64> = (0..n)
+        .map(|i| if reports(disc, i) { f64::from(counts[i]) } else { 0.0 })
+        .collect();
+    sum_shares(disc, &mut mine);
+    mine.iter().map(|&c| c as u32).collect()
+}
+
 /// Reaction force on a constrained set: the force the support exerts on the body.
 #[derive(Debug, Clone, Serialize)]
 pub struct Reaction {
@@ -210,7 +260,9 @@ pub struct Reaction {
 /// exert on the body, `−Σ (F_int + f_ext)` over the prescribed components the
 /// set owns (formulation Sec. 7; overlapping sets:
 /// [`crate::assembly::dofs::ConstrainedSet`]), so the reactions of all sets sum
-/// to the total support force. Only the bonds touching the sets are evaluated.
+/// to the total support force. Only the bonds touching the sets are evaluated;
+/// on a body discretised over several processes each sums its own points and
+/// the sums are added up (a collective call).
 pub fn reactions<M: Model>(
     model: &M,
     disc: &Discretization,
@@ -219,7 +271,8 @@ pub fn reactions<M: Model>(
     u: &[[f64; 3]],
     load_factor: f64,
 ) -> Vec<Reaction> {
-    dofs.sets
+    let mut reactions: Vec<Reaction> = dofs
+        .sets
         .iter()
         .map(|set| {
             let f_int = internal_forces_on(model, disc, u, true, &set.points);
@@ -228,6 +281,9 @@ pub fn reactions<M: Model>(
             let mut force = [0.0; 3];
             for &(i, c) in &set.owned {
                 let (i, c) = (i as usize, c as usize);
+                if !reports(disc, i) {
+                    continue;
+                }
                 let k = set
                     .points
                     .binary_search(&i)
@@ -240,5 +296,13 @@ pub fn reactions<M: Model>(
                 force,
             }
         })
-        .collect()
+        .collect();
+    if disc.share.is_some() {
+        let mut forces: Vec<f64> = reactions.iter().flat_map(|r| r.force).collect();
+        sum_shares(disc, &mut forces);
+        for (r, f) in reactions.iter_mut().zip(forces.chunks(3)) {
+            r.force.copy_from_slice(f);
+        }
+    }
+    reactions
 }

@@ -102,6 +102,8 @@ pub struct Shear {
 impl Shear {
     /// Computes every owner's weighted volume and inverse shape tensor. An owner
     /// whose intact bonds do not span the space is an error naming the point.
+    /// On a body discretised over several processes, only the owners whose
+    /// families this process holds (`disc.share`); the others contribute nothing.
     /// `gradient_dilatation` selects `θ = tr(K⁻¹ Σ w ξ ⊗ η_r)` (the surface
     /// correction, module docs) instead of the paper's weighted sum.
     pub fn new(
@@ -116,6 +118,9 @@ impl Shear {
             .into_par_iter()
             .map(|i| {
                 let (kappa, mu) = materials[disc.points.material[i] as usize].moduli(dim);
+                if disc.share.as_ref().is_some_and(|s| !s.holds(i)) {
+                    return Ok(Owner::failed(kappa, mu));
+                }
                 owner_data(disc, i, kappa, mu).ok_or(NumericalError::SingularShapeTensor {
                     point: i,
                     position: disc.points.x[i],

@@ -31,7 +31,7 @@ pub(crate) fn row(values: &[f64; 3], d: usize) -> String {
 pub fn write_points(path: &Path, scene: &Scene, s: &PointData) -> Result<(), Error> {
     let d = s.disc.d;
     let p = &s.disc.points;
-    let bonds = s.disc.bonds.touch_counts(p.len());
+    let bonds = s.bond_counts();
     let components = stress_components(d);
     let stress_header: String = components
         .iter()

@@ -159,6 +159,7 @@ pub(crate) fn write(
         velocity: Some(&solution.v),
         stress: None,
         damage: Some(&solution.damage),
+        bond_counts: None,
     };
     let point_plan = Plan {
         profiles: plan.profiles.clone(),

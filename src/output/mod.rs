@@ -235,6 +235,7 @@ fn write_quasi_static(
         velocity: None,
         stress: None,
         damage: Some(&solution.damage),
+        bond_counts: None,
     };
     write_points(tmp, scene, &solution.plan, &data, 1)?;
     csv::write_load_displacement(&tmp.join("load_displacement.csv"), solution)?;

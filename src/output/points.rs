@@ -23,9 +23,21 @@ pub struct PointData<'a> {
     pub stress: Option<&'a [Block]>,
     /// Damage per point, for fracture runs.
     pub damage: Option<&'a [f64]>,
+    /// Intact bonds touching each point, when counted already (a body
+    /// discretised over several processes: summed over them); `None`:
+    /// counted from `disc`, which holds every bond.
+    pub bond_counts: Option<&'a [u32]>,
 }
 
 impl PointData<'_> {
+    /// The intact bonds touching each point, as owner or as neighbour.
+    pub fn bond_counts(&self) -> std::borrow::Cow<'_, [u32]> {
+        match self.bond_counts {
+            Some(counts) => counts.into(),
+            None => self.disc.bonds.touch_counts(self.disc.points.len()).into(),
+        }
+    }
+
     /// Refuses to write `file` when a number it would hold is not finite,
     /// naming the field and the first such point: every writer of point data
     /// calls this, so no `NaN` or `inf` reaches a result.
@@ -85,6 +97,7 @@ impl StaticSolution {
             velocity: None,
             stress: self.stress.as_deref(),
             damage: None,
+            bond_counts: Some(&self.bond_counts),
         }
     }
 }

@@ -34,6 +34,7 @@ impl Series {
                 velocity: s.velocity,
                 stress: None,
                 damage: Some(s.damage),
+                bond_counts: None,
             },
         )?;
         self.entries.push((s.timestep, file));

@@ -154,7 +154,7 @@ fn point_arrays(s: &PointData, range: Range<usize>) -> Vec<Array> {
     let counts = if range.is_empty() {
         Vec::new()
     } else {
-        s.disc.bonds.touch_counts(p.len())[range.clone()]
+        s.bond_counts()[range.clone()]
             .iter()
             .map(|&c| c as i32)
             .collect()

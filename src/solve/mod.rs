@@ -51,6 +51,10 @@ pub struct Layout<'a> {
     pub x: &'a [[f64; 3]],
     /// Spacing of every point (the aggregates reach 1.5 spacings).
     pub spacing: &'a [f64],
+    /// The process of every point when the body is split over several
+    /// ([`crate::discretization::share::parts`]); `None`: one process.
+    #[cfg(feature = "mpi")]
+    pub part: Option<&'a [u32]>,
     /// The point and component of every free unknown, and back.
     pub dofs: &'a DofMap,
 }

@@ -58,11 +58,12 @@ extern "C" {
     /// Indexed by `KSPConvergedReason`, negative values included.
     pub static KSPConvergedReasons: *const *const c_char;
 
-    /// Open MPI's predefined handles (`MPI_DOUBLE`, `MPI_BYTE` and `MPI_SUM` are
+    /// Open MPI's predefined handles (`MPI_DOUBLE`, `MPI_BYTE`, `MPI_SUM` and `MPI_MIN` are
     /// their addresses).
     pub static ompi_mpi_double: Opaque;
     pub static ompi_mpi_byte: Opaque;
     pub static ompi_mpi_op_sum: Opaque;
+    pub static ompi_mpi_op_min: Opaque;
 
     pub fn MPI_Comm_rank(comm: MPI_Comm, rank: *mut c_int) -> c_int;
     pub fn MPI_Comm_size(comm: MPI_Comm, size: *mut c_int) -> c_int;

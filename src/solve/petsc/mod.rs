@@ -115,9 +115,9 @@ mod processes;
 
 pub(crate) use partition::{assembled_columns, asymmetry, mean_diagonal};
 use partition::{changed_rows, local_rows, petsc_int, LocalRows, Numbering, SomeRows};
-pub(crate) use processes::sum_over_processes;
-use processes::{comm_query, ensure_initialized, sum_each_over_processes};
+use processes::{comm_query, ensure_initialized};
 pub use processes::{on_every_process, share_path, Petsc};
+pub(crate) use processes::{sum_each_over_processes, sum_over_processes, Processes};
 
 /// What a PETSc solve used and did (`summary.json`).
 #[derive(Debug, Clone, Serialize, PartialEq)]
@@ -304,7 +304,7 @@ impl Solver {
             comm_query(ffi::MPI_Comm_rank),
             comm_query(ffi::MPI_Comm_size),
         );
-        let numbering = Numbering::new(pattern, layout.dofs, layout.x, processes)?;
+        let numbering = Numbering::new(layout, processes)?;
         let d = layout.d();
         let (first, last) = (numbering.bounds[rank] * d, numbering.bounds[rank + 1] * d);
         let LocalRows {

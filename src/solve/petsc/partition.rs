@@ -1,5 +1,6 @@
-//! How the points and `K` are split over the processes: recursive coordinate
-//! bisection into parts balanced by the stored entries of `K` ([`Numbering`]),
+//! How `K` is split over the processes: PETSc's numbering from the points'
+//! parts ([`crate::discretization::share::parts`], cut before any bond is
+//! searched; [`Numbering`]),
 //! the columns a process assembles (its own points' and its ghost points'),
 //! its rows gathered from them for PETSc ([`local_rows`]), and the asymmetry
 //! of the distributed `K`.
@@ -7,29 +8,25 @@
 use super::ffi::{self, PetscInt};
 use super::processes::{comm_query, ensure_initialized, sum_over_processes};
 use super::Layout;
-use crate::assembly::dofs::{DofMap, PRESCRIBED};
+use crate::assembly::dofs::PRESCRIBED;
 use crate::assembly::pattern::Pattern;
 use crate::error::{Error, NumericalError};
 
-/// The numbering of `dofs` over the processes of the run and this process's
-/// rank (every process computes the same numbering).
-fn this_part(
-    pattern: &Pattern,
-    dofs: &DofMap,
-    x: &[[f64; 3]],
-) -> Result<(Numbering, usize), Error> {
+/// The numbering of the free unknowns over the processes of the run and this
+/// process's rank (every process computes the same numbering).
+fn this_part(layout: Layout) -> Result<(Numbering, usize), Error> {
     ensure_initialized()?;
     let (rank, processes) = (
         comm_query(ffi::MPI_Comm_rank),
         comm_query(ffi::MPI_Comm_size),
     );
-    Ok((Numbering::new(pattern, dofs, x, processes)?, rank))
+    Ok((Numbering::new(layout, processes)?, rank))
 }
 
 /// The free unknowns of this process's points, in increasing order.
-fn own_unknowns(pattern: &Pattern, layout: Layout) -> Result<Vec<usize>, Error> {
+fn own_unknowns(layout: Layout) -> Result<Vec<usize>, Error> {
     let dofs = layout.dofs;
-    let (numbering, rank) = this_part(pattern, dofs, layout.x)?;
+    let (numbering, rank) = this_part(layout)?;
     Ok(numbering
         .part(rank)
         .iter()
@@ -43,12 +40,8 @@ fn own_unknowns(pattern: &Pattern, layout: Layout) -> Result<Vec<usize>, Error> 
 /// level): those of its own points ([`Numbering`]) and of every point coupled
 /// to them (its ghost points: within a horizon for the bond-based model, two
 /// for the shear model), whose columns hold the rest of its own rows.
-pub(crate) fn assembled_columns(
-    pattern: &Pattern,
-    dofs: &DofMap,
-    x: &[[f64; 3]],
-) -> Result<Vec<bool>, Error> {
-    let (numbering, rank) = this_part(pattern, dofs, x)?;
+pub(crate) fn assembled_columns(pattern: &Pattern, layout: Layout) -> Result<Vec<bool>, Error> {
+    let (numbering, rank) = this_part(layout)?;
     let mut keep = vec![false; pattern.row_offsets.len() - 1];
     for &q in numbering.part(rank) {
         pattern
@@ -63,7 +56,7 @@ pub(crate) fn assembled_columns(
 /// columns, [`assembled_columns`]): each process sums over its own columns,
 /// whose transposed entries lie in its ghost columns (a collective call).
 pub(crate) fn asymmetry(pattern: &Pattern, values: &[f64], layout: Layout) -> Result<f64, Error> {
-    let own = own_unknowns(pattern, layout)?;
+    let own = own_unknowns(layout)?;
     let (mut skew, mut total) = (0.0, 0.0);
     // Own columns k in increasing order (a part's points are in point order):
     // row k of every column r is reached in increasing order too, so a cursor
@@ -104,7 +97,7 @@ pub(crate) fn mean_diagonal(
     values: &[f64],
     layout: Layout,
 ) -> Result<f64, Error> {
-    let own = own_unknowns(pattern, layout)?;
+    let own = own_unknowns(layout)?;
     let sum: f64 = own
         .iter()
         .map(|&k| {
@@ -136,9 +129,8 @@ pub(super) fn petsc_int(n: usize, what: &str) -> Result<PetscInt, Error> {
 }
 
 /// PETSc's numbering: `d` rows per point with a free component, the points
-/// split into one part per process by recursive coordinate bisection
-/// ([`bisect`]), balanced by the stored entries of `K` in their rows; PETSc's
-/// blocks are the parts in turn, each in dhpd's point order.
+/// split into one part per process (`Layout::part`); PETSc's blocks are the
+/// parts in turn, each in dhpd's point order.
 pub(super) struct Numbering {
     /// The points with a free component (PETSc's block `s` is `points[s]`).
     pub(super) points: Vec<usize>,
@@ -154,47 +146,33 @@ impl Numbering {
         &self.points[self.bounds[rank]..self.bounds[rank + 1]]
     }
 
-    /// The numbering of `dofs` on the points at `x` split over `processes`
-    /// (`pattern`: its point level is enough, so that a process knows its
-    /// points before it assembles). Every process computes the same one.
-    pub(super) fn new(
-        pattern: &Pattern,
-        dofs: &DofMap,
-        x: &[[f64; 3]],
-        processes: usize,
-    ) -> Result<Self, Error> {
+    /// The numbering of the free unknowns of `layout` split over `processes`
+    /// by its parts (all on one process without them). Every process computes
+    /// the same one.
+    pub(super) fn new(layout: Layout, processes: usize) -> Result<Self, Error> {
+        let dofs = layout.dofs;
         let d = dofs.d;
-        let mut points: Vec<usize> = Vec::new();
-        for &(i, _) in &dofs.free_dofs {
-            // Free unknowns are numbered point by point (`DofMap::new`).
-            if points.last() != Some(&(i as usize)) {
-                points.push(i as usize);
-            }
+        let n = layout.x.len();
+        let part_of = |i: usize| layout.part.map_or(0, |p| p[i] as usize);
+        if layout.part.is_none() && processes > 1 {
+            return Err(NumericalError::Solver(format!(
+                "the points were not split over the {processes} processes of this run (a \
+                 defect: the setup splits a body on the petsc route)"
+            ))
+            .into());
+        }
+        let mut by_part = vec![Vec::new(); processes.max(1)];
+        for i in (0..n).filter(|&i| dofs.free_count(i) > 0) {
+            by_part[part_of(i)].push(i);
+        }
+        let mut points: Vec<usize> = Vec::with_capacity(n);
+        let mut bounds = vec![0];
+        for part in by_part {
+            points.extend(part);
+            bounds.push(points.len());
         }
         petsc_int(points.len() * d, "rows")?;
-        // Balance by stored entries of K (an identity row counts one): a free
-        // component's row has the free components of the points coupled to it.
-        let mut weight = vec![0; x.len()];
-        for &i in &points {
-            let row: usize = pattern
-                .rows(i)
-                .iter()
-                .map(|&p| dofs.free_count(p as usize))
-                .sum();
-            weight[i] = (0..d)
-                .map(|c| match dofs.free_index[3 * i + c] {
-                    PRESCRIBED => 1,
-                    _ => row,
-                })
-                .sum();
-        }
-        let mut sizes = Vec::with_capacity(processes);
-        bisect(&mut points, &weight, x, processes.max(1), &mut sizes);
-        let mut bounds = vec![0];
-        for size in sizes {
-            bounds.push(bounds.last().expect("started") + size);
-        }
-        let mut block = vec![0; x.len()];
+        let mut block = vec![0; layout.x.len()];
         for (s, &i) in points.iter().enumerate() {
             block[i] = s;
         }
@@ -209,54 +187,6 @@ impl Numbering {
             bounds,
         })
     }
-}
-
-/// Splits `points` into `parts` parts of about equal `weight` (by point) by
-/// recursive coordinate bisection: the longest side of their bounding box is
-/// cut where the weight below reaches the share of the parts on that side
-/// (`⌊parts/2⌋` of `parts`), ties in the coordinate broken by the point's
-/// index, so that every process finds the same parts. The parts end up in
-/// turn in `points`, each in increasing point order, their sizes pushed to
-/// `sizes`. A cut across the body's longest side is the smallest of the
-/// straight cuts of a box, and with it the ghost layer of each process.
-fn bisect(
-    points: &mut [usize],
-    weight: &[usize],
-    x: &[[f64; 3]],
-    parts: usize,
-    sizes: &mut Vec<usize>,
-) {
-    if parts == 1 {
-        points.sort_unstable();
-        sizes.push(points.len());
-        return;
-    }
-    let extent = |axis: usize| {
-        let (low, high) = points
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &i| {
-                (l.min(x[i][axis]), h.max(x[i][axis]))
-            });
-        high - low
-    };
-    let axis = (0..3)
-        .max_by(|&a, &b| extent(a).total_cmp(&extent(b)).then(b.cmp(&a)))
-        .expect("three axes");
-    points.sort_unstable_by(|&i, &j| x[i][axis].total_cmp(&x[j][axis]).then(i.cmp(&j)));
-    let lower = parts / 2;
-    let total: usize = points.iter().map(|&i| weight[i]).sum();
-    let mut below = 0;
-    let mut cut = points.len();
-    for (m, &i) in points.iter().enumerate() {
-        if below * parts >= total * lower {
-            cut = m;
-            break;
-        }
-        below += weight[i];
-    }
-    let (low, high) = points.split_at_mut(cut);
-    bisect(low, weight, x, lower, sizes);
-    bisect(high, weight, x, parts - lower, sizes);
 }
 
 /// One process's rows of `K` in CSR form with PETSc's column numbers.

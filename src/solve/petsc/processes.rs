@@ -107,7 +107,14 @@ pub(crate) fn sum_over_processes(value: f64) -> f64 {
 
 /// Every entry of `values` summed over the processes, in place (a collective
 /// call with the same length on every process).
-pub(super) fn sum_each_over_processes(values: &mut [f64]) {
+pub(crate) fn sum_each_over_processes(values: &mut [f64]) {
+    reduce_each_over_processes(values, &raw const ffi::ompi_mpi_op_sum);
+}
+
+/// Every entry of `values` reduced by `op` (`MPI_SUM`, `MPI_MIN`) over the
+/// processes, in place (a collective call with the same length on every
+/// process).
+fn reduce_each_over_processes(values: &mut [f64], op: *const ffi::Opaque) {
     if !initialized().unwrap_or(false) || values.is_empty() {
         return;
     }
@@ -120,7 +127,7 @@ pub(super) fn sum_each_over_processes(values: &mut [f64]) {
             values.as_mut_ptr().cast(),
             c_int::try_from(values.len()).unwrap_or(c_int::MAX),
             &raw const ffi::ompi_mpi_double,
-            &raw const ffi::ompi_mpi_op_sum,
+            op,
             ffi::PETSC_COMM_WORLD,
         );
     }
@@ -162,14 +169,37 @@ pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
 /// failed (a collective call: a process must not go on alone into PETSc's
 /// collective calls while another stops).
 pub fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
-    let failed = sum_over_processes(f64::from(u8::from(result.is_err())));
-    match result {
-        Ok(_) if failed > 0.0 => Err(NumericalError::Solver(format!(
-            "{failed} other process(es) of this MPI run stopped with an error (printed by \
-             their rank)"
-        ))
-        .into()),
-        result => result,
+    crate::discretization::share::agreed(Some(&Processes), result)
+}
+
+/// The processes of this MPI run as the discretisation sees them
+/// ([`crate::discretization::share`]): their number, this one's rank, and
+/// the sums and minima over the processes.
+pub struct Processes;
+
+impl Processes {
+    /// The processes of this run when there are several (PETSc initialised
+    /// and more than one process); `None` on one.
+    pub fn of_run() -> Option<Self> {
+        (initialized().unwrap_or(false) && comm_query(ffi::MPI_Comm_size) > 1).then_some(Processes)
+    }
+}
+
+impl crate::discretization::share::Processes for Processes {
+    fn size(&self) -> usize {
+        comm_query(ffi::MPI_Comm_size)
+    }
+
+    fn rank(&self) -> usize {
+        comm_query(ffi::MPI_Comm_rank)
+    }
+
+    fn sum(&self, values: &mut [f64]) {
+        sum_each_over_processes(values);
+    }
+
+    fn min(&self, values: &mut [f64]) {
+        reduce_each_over_processes(values, &raw const ffi::ompi_mpi_op_min);
     }
 }
 
