@@ -200,6 +200,7 @@ fn point_writers_refuse_non_finite_numbers() {
             velocity: None,
             stress: None,
             damage: Some(damage),
+            bond_counts: None,
         };
         let path = dir.0.join("points.vtu");
         let err = dhpd::output::vtu::write(&path, &data)

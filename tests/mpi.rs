@@ -72,12 +72,15 @@ fn run(scene: &Path, out: &Path, processes: Option<usize>) {
 
 /// The displacement of every point, from `points.csv` (the `u_*` columns).
 fn displacements(out: &Path) -> Vec<Vec<f64>> {
+    point_columns(out, |name| name.starts_with("u_"))
+}
+
+/// The columns of `points.csv` whose names `wanted` picks, per point.
+fn point_columns(out: &Path, wanted: impl Fn(&str) -> bool) -> Vec<Vec<f64>> {
     let text = std::fs::read_to_string(out.join("points.csv")).expect("points.csv");
     let mut lines = text.lines();
     let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
-    let columns: Vec<usize> = (0..header.len())
-        .filter(|&c| header[c].starts_with("u_"))
-        .collect();
+    let columns: Vec<usize> = (0..header.len()).filter(|&c| wanted(header[c])).collect();
     lines
         .map(|line| {
             let fields: Vec<&str> = line.split(',').collect();
@@ -168,10 +171,89 @@ fn petsc_on_one_two_and_three_processes_matches_the_single_process_solve() {
                     difference / max_u
                 ));
             }
+            // Each process searched only the bonds its part needs; the
+            // whole body's counts, bonds per point, stresses and reactions
+            // are summed from the processes' own points.
+            failures.extend(same_answers_from_shares(
+                &format!("{name} on {processes} process(es)"),
+                (&out, &s),
+                (&reference_out, &summary(&reference_out)),
+                processes,
+            ));
         }
     }
     std::fs::remove_dir_all(&dir).ok();
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// What differs between a run discretised over `processes` and the
+/// single-process reference, beyond the displacement: the count of bonds
+/// (exactly), each point's count of bonds (exactly), the stresses where the
+/// scene asks for them and the reactions (to [`AGREEMENT`] of their largest:
+/// linear in the answer); and the bonds each process held: on several
+/// processes each fewer than the body's (the bodies here are a few
+/// horizons longer than a part's ghost layers), together at least all.
+fn same_answers_from_shares(
+    run: &str,
+    (out, s): (&Path, &serde_json::Value),
+    (reference_out, reference): (&Path, &serde_json::Value),
+    processes: usize,
+) -> Vec<String> {
+    let mut failures = Vec::new();
+    let bonds = reference["counts"]["bonds"].as_u64().expect("bonds");
+    if s["counts"]["bonds"].as_u64() != Some(bonds) {
+        failures.push(format!(
+            "{run}: {} bonds, not {bonds}",
+            s["counts"]["bonds"]
+        ));
+    }
+    let held: Vec<u64> = s["counts"]["bonds_held"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|b| b.as_u64()).collect())
+        .unwrap_or_default();
+    let shared = held.len() == processes
+        && held.iter().all(|&h| h < bonds)
+        && held.iter().sum::<u64>() >= bonds;
+    if processes > 1 && !shared {
+        failures.push(format!("{run}: bonds held {held:?} of {bonds}"));
+    }
+    let counts = |o: &Path| point_columns(o, |c| c == "bond_count");
+    if counts(out) != counts(reference_out) {
+        failures.push(format!("{run}: the bonds per point differ"));
+    }
+    let is_stress = |c: &str| matches!(c, "sxx" | "syy" | "szz" | "syz" | "sxz" | "sxy");
+    let (stress, expected) = (
+        point_columns(out, is_stress),
+        point_columns(reference_out, is_stress),
+    );
+    let (largest_difference, largest) = difference(&stress, &expected);
+    if !(largest_difference <= AGREEMENT * largest) {
+        failures.push(format!(
+            "{run}: stress differs by {largest_difference:e} of {largest:e}"
+        ));
+    }
+    let forces = |v: &serde_json::Value| -> Vec<Vec<f64>> {
+        v["reactions"]
+            .as_array()
+            .expect("reactions")
+            .iter()
+            .map(|r| {
+                r["force"]
+                    .as_array()
+                    .expect("a force")
+                    .iter()
+                    .map(|f| f.as_f64().expect("a number"))
+                    .collect()
+            })
+            .collect()
+    };
+    let (largest_difference, largest) = difference(&forces(s), &forces(reference));
+    if !(largest > 0.0 && largest_difference <= AGREEMENT * largest) {
+        failures.push(format!(
+            "{run}: reactions differ by {largest_difference:e} of {largest:e}"
+        ));
+    }
+    failures
 }
 
 /// The largest difference between two displacement fields, and the largest

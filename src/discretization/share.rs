@@ -59,6 +59,8 @@ pub struct Share {
     pub part: Vec<u32>,
     /// This process's rank.
     pub rank: u32,
+    /// The number of processes.
+    pub processes: u32,
     /// The points whose bonds (their families) this process holds: its own
     /// and those within the depth its columns of `K` need (module docs);
     /// every point when the driver needs every bond (fracture).
@@ -99,6 +101,7 @@ impl Share {
         Ok(Share {
             part,
             rank,
+            processes: processes.size() as u32,
             searched,
         })
     }

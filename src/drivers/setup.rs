@@ -103,6 +103,14 @@ impl Setup {
     }
 }
 
+impl Setup {
+    /// The bonds of the whole body (on a body discretised over several
+    /// processes, summed over them: a collective call).
+    pub fn bond_count(&self) -> usize {
+        super::system::total_bonds(&self.disc)
+    }
+}
+
 /// The processes a scene on the `petsc` route is discretised over, when the
 /// run has several ([`crate::discretization::share`]); `None` otherwise: one
 /// process, other routes, a build without the `mpi` feature.

@@ -4,7 +4,7 @@
 
 use super::setup::{Plan, Setup, Timings};
 use super::system::{
-    agreed, bond_counts, check_range, reactions, reports, right_hand_side, sum_shares,
+    agreed, bond_counts, bonds_held, check_range, reactions, reports, right_hand_side, sum_shares,
     total_bonds, Reaction, System,
 };
 use super::{forward, Observer};
@@ -55,6 +55,10 @@ pub struct Counts {
     pub gmres: Option<GmresReport>,
     /// Isolated points removed.
     pub removed_points: usize,
+    /// The bonds each process holds when the body is discretised over
+    /// several processes (the whole body's on each in a fracture scene).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bonds_held: Option<Vec<usize>>,
     /// What PETSc used and did (`solver.method = "petsc"`).
     #[cfg(feature = "mpi")]
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -122,6 +126,7 @@ impl Counts {
             refinement_steps: report.refinement_steps,
             gmres: report.gmres,
             removed_points: disc.removed_isolated,
+            bonds_held: bonds_held(disc),
             #[cfg(feature = "mpi")]
             petsc: pipeline.petsc_report().cloned(),
         }

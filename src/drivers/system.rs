@@ -227,6 +227,17 @@ pub fn total_bonds(disc: &Discretization) -> usize {
     total[0] as usize
 }
 
+/// The bonds each process holds, when the body is discretised over several
+/// (its own points' families and those of the layers around them: a
+/// collective call).
+pub fn bonds_held(disc: &Discretization) -> Option<Vec<usize>> {
+    let share = disc.share.as_ref()?;
+    let mut held = vec![0.0; share.processes as usize];
+    held[share.rank as usize] = disc.bonds.len() as f64;
+    sum_shares(disc, &mut held);
+    Some(held.iter().map(|&b| b as usize).collect())
+}
+
 /// The intact bonds touching each point, as owner or as neighbour (on a body
 /// discretised over several processes, each counts its own points' and the
 /// counts are summed: a collective call).

@@ -262,14 +262,14 @@ fn check(path: &Path) -> Result<(), Error> {
             "{}: valid ({} points, {} bonds; explicit dynamics)",
             path.display(),
             setup.disc.points.len(),
-            setup.disc.bonds.len()
+            setup.bond_count()
         );
     } else {
         println!(
             "{}: valid ({} points, {} bonds, {} free dofs)",
             path.display(),
             setup.disc.points.len(),
-            setup.disc.bonds.len(),
+            setup.bond_count(),
             setup.dofs.n_free()
         );
     }
