@@ -504,23 +504,97 @@ fn every_process_writes_its_piece_of_the_parallel_vtk_file() {
 
 /// `scene` run by `mpirun -np 2`: its exit status and standard error.
 fn run_on_two(scene: &Path, out: &Path) -> (bool, String) {
-    let output = Command::new("mpirun")
-        .args([
-            "--allow-run-as-root",
-            "--oversubscribe",
-            "--bind-to",
-            "none",
-            "--timeout",
-            MPI_TIMEOUT,
-        ])
-        .args(["-np", "2", env!("CARGO_BIN_EXE_dhpd"), "run"])
+    run_on(2, scene, out)
+}
+
+/// Runs `scene` on `processes` processes (1: without mpirun); whether it
+/// succeeded, and what it printed on stderr.
+fn run_on(processes: usize, scene: &Path, out: &Path) -> (bool, String) {
+    let dhpd = env!("CARGO_BIN_EXE_dhpd");
+    let mut command = Command::new(if processes == 1 { dhpd } else { "mpirun" });
+    if processes > 1 {
+        command
+            .args([
+                "--allow-run-as-root",
+                "--oversubscribe",
+                "--bind-to",
+                "none",
+                "--timeout",
+                MPI_TIMEOUT,
+            ])
+            .args(["-np", &processes.to_string(), dhpd]);
+    }
+    let output = command
+        .env("RAYON_NUM_THREADS", "1")
+        .arg("run")
         .arg(scene)
         .arg("--out")
         .arg(out)
         .output()
-        .expect("mpirun starts");
+        .expect("mpirun and dhpd start");
     let stderr = String::from_utf8_lossy(&output.stderr).into_owned();
     (output.status.success(), stderr)
+}
+
+/// The decisions that need the whole body, made together by processes that
+/// each hold a share of its bonds (`unheld_piece`: a held bar, a piece more
+/// than a horizon away and a lone point): the lone point is removed with the
+/// warning, and the piece the supports leave free is named, as on one
+/// process; with the piece held, the same answer as on one process.
+#[test]
+fn processes_sharing_the_bonds_find_isolated_points_and_free_bodies_together() {
+    let dir = std::env::temp_dir().join(format!("dhpd-mpi-bodies-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = scene_path("unheld_piece");
+    let named = |stderr: &str| -> String {
+        let at = stderr
+            .find("the body of")
+            .unwrap_or_else(|| panic!("no free body named:\n{stderr}"));
+        stderr[at..].lines().next().unwrap_or_default().to_string()
+    };
+    let removed = "warning: removing 1 point(s) without any bond (first at [1.81, 0.01, 0.0])";
+    let (success, single) = run_on(1, &scene, &dir.join("free_np1"));
+    assert!(!success && single.contains(removed), "{single}");
+    for processes in [2, 3] {
+        let out = dir.join(format!("free_np{processes}"));
+        let (success, several) = run_on(processes, &scene, &out);
+        assert!(!success, "{processes} processes: the free piece is refused");
+        assert!(
+            several.contains(removed),
+            "{processes} processes:\n{several}"
+        );
+        assert_eq!(named(&several), named(&single), "{processes} processes");
+        assert!(!out.exists(), "no half-written output");
+    }
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let held = dir.join("held.toml");
+    std::fs::write(
+        &held,
+        text.replace("{ x = 1.0e-4 }", "{ x = 1.0e-4, y = 0.0 }"),
+    )
+    .unwrap();
+    let reference_scene = dir.join("held_reference.toml");
+    std::fs::write(
+        &reference_scene,
+        std::fs::read_to_string(&held)
+            .unwrap()
+            .replace("method = \"petsc\"", ""),
+    )
+    .unwrap();
+    let reference_out = dir.join("held_reference");
+    run(&reference_scene, &reference_out, None);
+    let reference = displacements(&reference_out);
+    for processes in [2, 3] {
+        let out = dir.join(format!("held_np{processes}"));
+        run(&held, &out, Some(processes));
+        let (difference, max_u) = difference(&displacements(&out), &reference);
+        assert!(
+            max_u > 0.0 && difference <= AGREEMENT * max_u,
+            "{processes} processes: differs by {difference:e} of {max_u:e}"
+        );
+        assert_eq!(summary(&out)["counts"]["removed_points"], 1);
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
