@@ -23,7 +23,7 @@ pub fn check(
     processes: Option<&dyn Processes>,
 ) -> Result<(), NumericalError> {
     let bodies = match processes {
-        Some(processes) if disc.share.is_some() => shared_bodies(disc, processes),
+        Some(processes) if disc.partial_share().is_some() => shared_bodies(disc, processes),
         _ => bodies(disc),
     };
     for points in bodies {
@@ -46,7 +46,13 @@ fn bodies(disc: &Discretization) -> Vec<Vec<usize>> {
     let mut roots = local_roots(disc);
     let n = disc.points.len();
     let root: Vec<usize> = (0..n).map(|i| find(&mut roots, i)).collect();
-    group(&root)
+    // Labelled by their least point, as [`shared_bodies`] labels them, so
+    // that one process and several name the same body first.
+    let mut least = vec![usize::MAX; n];
+    for i in 0..n {
+        least[root[i]] = least[root[i]].min(i);
+    }
+    group(&root.iter().map(|&r| least[r]).collect::<Vec<_>>())
 }
 
 /// The connected components of the intact-bond graph of a body whose

@@ -111,8 +111,13 @@ impl Stiffness {
         let point = |c: usize| dofs.free_dofs[c].0 as usize;
         // An empty column was not assembled here (a distributed solve's other
         // processes hold it); an assembled one holds at least its diagonal.
+        // A process holding only some bonds checks its own points' columns,
+        // whose entries in its own rows are complete (every column is some
+        // process's own).
         let in_scope = |c: usize| {
-            !column(c).is_empty() && columns.is_none_or(|cols| cols[point(c)])
+            !column(c).is_empty()
+                && columns.is_none_or(|cols| cols[point(c)])
+                && disc.reports(point(c))
         };
         if let Some((c, v)) = (0..self.n).filter(|&c| in_scope(c)).find_map(|c| {
             let v = self.values[column(c)].iter().find(|v| !v.is_finite())?;

@@ -168,9 +168,25 @@ pub struct Discretization {
     /// Named point sets from the physical groups of imported meshes.
     pub groups: Vec<PointGroup>,
     /// This process's share when the body is discretised over several
-    /// processes ([`share`]): only the families of `share.searched` are
-    /// here. `None`: every bond is.
+    /// processes (`discretization::share`): only the families of
+    /// `share.searched` are here. `None`: one process.
     pub share: Option<Share>,
+}
+
+impl Discretization {
+    /// This process's share when it holds only some of the bonds (a body
+    /// discretised over several processes, not a fracture scene's, whose
+    /// processes each hold every bond).
+    pub fn partial_share(&self) -> Option<&Share> {
+        self.share.as_ref().filter(|s| !s.every_bond)
+    }
+
+    /// Whether this process answers for point `i` (its force, reaction,
+    /// stress, bonds): every point, unless it holds only some of the bonds
+    /// ([`Discretization::partial_share`]), then its own.
+    pub fn reports(&self, i: usize) -> bool {
+        self.partial_share().is_none_or(|s| s.owns(i))
+    }
 }
 
 /// The points of a scene before bonds are found, with the named groups of its meshes.
@@ -349,9 +365,8 @@ pub fn discretize(
                 let free = (s.free_components)(&bodiless)?;
                 let largest = points.spacing.iter().copied().fold(0.0, f64::max);
                 let reach = partial_volume::PartialVolume { rule, d }.reach(largest);
-                let every_bond = scene.quasi_static.is_some();
-                let kind = scene.model.kind;
-                Share::new(s.processes, &points, &free, d, kind, reach, every_bond)
+                let depth = Share::depth(scene);
+                Share::new(s.processes, &points, &free, d, depth, reach)
             })
             .transpose();
         let share = agreed(processes, share)?;
@@ -364,7 +379,8 @@ pub fn discretize(
             share.as_ref().map(|s| &s.searched[..]),
         );
         let bonds = agreed(processes, bonds)?;
-        let isolated = isolated_points(&bonds, points.len(), share.as_ref(), processes);
+        let partial = share.as_ref().filter(|s| !s.every_bond);
+        let isolated = isolated_points(&bonds, points.len(), partial, processes);
         if isolated.is_empty() {
             return Ok(Discretization {
                 d,
@@ -410,9 +426,9 @@ pub fn discretize(
     }
 }
 
-/// The points no bond touches, in increasing order. With a `share`, each
-/// process decides for its own points (whose touching bonds it all holds)
-/// and the processes add up their answers (a collective call).
+/// The points no bond touches, in increasing order. With a `share` of the
+/// bonds, each process decides for its own points (whose touching bonds it
+/// all holds) and the processes add up their answers (a collective call).
 fn isolated_points(
     bonds: &Bonds,
     n: usize,

@@ -1,21 +1,26 @@
 //! A body discretised over the processes of a distributed run: each process
 //! searches the bonds of its own points and of the layer around them that
-//! its rows of `K` need, not the whole body's.
+//! its own rows of `K` and its own points' forces need, not the whole body's.
 //!
-//! Column `q` of the tangent (`assembly::stiffness`) sums the terms of `q`'s
-//! own family and of every owner whose family holds `q` (its dual horizon):
-//! it needs the complete families of `q` and of the owners within one bond
-//! length `R` of it (`R = max δ + the partial-volume reach of the largest
-//! spacing`, the longest bond the scene can have). A process assembles the
-//! columns of its own points and of their ghost points (those coupled to them:
-//! within `R` for the bond-based model, `2R` for the shear model, whose owner
-//! couples every pair of its family), so it searches the families of every
-//! point within `2R` (bond-based) or `3R` (shear) of its own points. The
-//! internal force and stress of an own point, and its count of bonds, need
-//! less. Points themselves (coordinates, volumes, horizons) stay on every
-//! process: the parts are cut from them ([`parts`]) before any bond is
-//! searched. The fracture driver decides every bond on every process, so a
-//! fracture scene searches them all and shares only the parts.
+//! Let `R = max δ + the partial-volume reach of the largest spacing`, the
+//! longest bond the scene can have. Row `p` of the tangent (and the internal
+//! force on `p`) sums the terms of every owner `o` with `p ∈ {o} ∪ H_o`
+//! (`assembly::stiffness`: an owner's family terms reach the owner and its
+//! family), all within `R` of `p`, each needing `o`'s complete family. So a
+//! static solve searches the families of the points within one bond length
+//! of its own points: its own rows of `K` (in the columns of its own and
+//! ghost points), the right-hand side, reactions, recovered stresses and
+//! counts of bonds of its own points are then complete; the other rows of
+//! its ghost columns are not, and nothing reads them. An explicit run
+//! evaluates the same terms with the displacements of the owners' families:
+//! within `R` of an own point for the bond-based pair forces, `2R` for the
+//! shear model's owner kinematics, which are the ghost points whose
+//! displacements it receives each step ([`Halo`]); the shear model's
+//! explicit run searches two bond lengths deep. Points themselves
+//! (coordinates, volumes, horizons) stay on every process: the parts are cut
+//! from them ([`parts`]) before any bond is searched. The fracture driver
+//! decides every bond on every process, so a fracture scene searches them
+//! all and shares only the parts.
 //!
 //! What is global is made so by collective calls ([`Processes`]): the count
 //! of bonds touching a point is complete for own points only, so isolated
@@ -50,6 +55,60 @@ pub trait Processes {
     fn sum(&self, values: &mut [f64]);
     /// Every entry of `values` the least over the processes, in place.
     fn min(&self, values: &mut [f64]);
+    /// `send[r]` to process `r`, for every `r`; what every process sent this
+    /// one, by sender.
+    fn all_to_all(&self, send: &[Vec<f64>]) -> Vec<Vec<f64>>;
+}
+
+/// The exchange of the ghost points' values each step of a distributed
+/// explicit run: every process sends the values of its own points that
+/// another holds the families of (`Share::searched`) and receives those of
+/// its own such points from their processes. Built once (the processes tell
+/// each other which points they need).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Halo {
+    /// Per process: the own points whose values it receives from this one, in order.
+    send: Vec<Vec<usize>>,
+    /// Per process: the points of it whose values this one receives, in order.
+    receive: Vec<Vec<usize>>,
+}
+
+impl Halo {
+    /// The halo of `share`: the points this process holds the families of
+    /// but does not own, from their processes (a collective call).
+    pub fn new(share: &Share, processes: &dyn Processes) -> Self {
+        let mut receive = vec![Vec::new(); share.processes as usize];
+        for (i, &p) in share.part.iter().enumerate() {
+            if share.searched[i] && p != share.rank {
+                receive[p as usize].push(i);
+            }
+        }
+        let asked: Vec<Vec<f64>> = receive
+            .iter()
+            .map(|points| points.iter().map(|&i| i as f64).collect())
+            .collect();
+        let send = processes
+            .all_to_all(&asked)
+            .into_iter()
+            .map(|points| points.into_iter().map(|i| i as usize).collect())
+            .collect();
+        Halo { send, receive }
+    }
+
+    /// Overwrites the ghost points' `values` with their processes' (a
+    /// collective call).
+    pub fn exchange(&self, processes: &dyn Processes, values: &mut [[f64; 3]]) {
+        let send: Vec<Vec<f64>> = self
+            .send
+            .iter()
+            .map(|points| points.iter().flat_map(|&i| values[i]).collect())
+            .collect();
+        for (points, received) in self.receive.iter().zip(processes.all_to_all(&send)) {
+            for (&i, value) in points.iter().zip(received.chunks_exact(3)) {
+                values[i].copy_from_slice(value);
+            }
+        }
+    }
 }
 
 /// This process's share of a body discretised over several processes.
@@ -61,6 +120,9 @@ pub struct Share {
     pub rank: u32,
     /// The number of processes.
     pub processes: u32,
+    /// Whether every bond was searched (a fracture scene): the process
+    /// holds the whole body's bonds, and its answers are the whole body's.
+    pub every_bond: bool,
     /// The points whose bonds (their families) this process holds: its own
     /// and those within the depth its columns of `K` need (module docs);
     /// every point when the driver needs every bond (fracture).
@@ -70,40 +132,47 @@ pub struct Share {
 impl Share {
     /// The share of this process among `points` (with `free` components
     /// each): its part ([`parts`]) and the points within `depth` bond lengths
-    /// of it (`reach`: the largest partial-volume reach beyond a horizon), or
-    /// every point with `every_bond`.
+    /// of it (`reach`: the largest partial-volume reach beyond a horizon;
+    /// module docs), or every point (`depth` `None`).
     pub fn new(
         processes: &dyn Processes,
         points: &Points,
         free: &[usize],
         d: usize,
-        kind: ModelKind,
+        depth: Option<f64>,
         reach: f64,
-        every_bond: bool,
     ) -> Result<Self, Error> {
         let part = parts(points, free, d, processes.size())?;
         let rank = processes.rank() as u32;
         let own: Vec<bool> = part.iter().map(|&p| p == rank).collect();
         let bond = points.horizon.iter().copied().fold(0.0, f64::max) + reach;
-        let depth = match kind {
-            ModelKind::BondBased => 2.0,
-            ModelKind::Shear => 3.0,
-        };
         // A bond is strictly shorter than δ_i + r_j (or at most δ_i): a margin
         // of round-off keeps a point at exactly that distance.
-        let radius = depth * bond * (1.0 + 1e-9);
-        let searched = match (every_bond, d) {
-            (true, _) => vec![true; points.len()],
-            (false, 1) => within::<1>(points, &own, radius)?,
-            (false, 2) => within::<2>(points, &own, radius)?,
-            (false, _) => within::<3>(points, &own, radius)?,
+        let searched = match (depth, d) {
+            (None, _) => vec![true; points.len()],
+            (Some(depth), 1) => within::<1>(points, &own, depth * bond * (1.0 + 1e-9))?,
+            (Some(depth), 2) => within::<2>(points, &own, depth * bond * (1.0 + 1e-9))?,
+            (Some(depth), _) => within::<3>(points, &own, depth * bond * (1.0 + 1e-9))?,
         };
         Ok(Share {
             part,
             rank,
             processes: processes.size() as u32,
+            every_bond: depth.is_none(),
             searched,
         })
+    }
+
+    /// The bond lengths around its own points whose families a process
+    /// searches for a scene (module docs): one for a static solve and the
+    /// bond-based model's explicit run, two for the shear model's; every
+    /// point's (`None`) for fracture.
+    pub fn depth(scene: &crate::scene::Scene) -> Option<f64> {
+        match (&scene.quasi_static, &scene.dynamics, scene.model.kind) {
+            (Some(_), _, _) => None,
+            (None, Some(_), ModelKind::Shear) => Some(2.0),
+            _ => Some(1.0),
+        }
     }
 
     /// Whether `i` is one of this process's points.
@@ -149,8 +218,9 @@ pub fn parts(
 }
 
 /// Each point's `free` components times the free components of the points
-/// within its horizon, itself included: its entries of `K` when the horizons
-/// are equal.
+/// within its horizon, itself included: its entries of `K` for the
+/// bond-based model with equal horizons, and in proportion to them for the
+/// shear model (whose rows reach two horizons).
 fn row_lengths<const K: usize>(points: &Points, free: &[usize]) -> Result<Vec<f64>, Error> {
     let coords: Vec<[f64; K]> = points
         .x

@@ -98,6 +98,10 @@ pub struct Snapshot<'a> {
     pub velocity: Option<&'a [[f64; 3]]>,
     /// Damage per point.
     pub damage: &'a [f64],
+    /// Intact bonds touching each point, when `disc` does not hold every
+    /// bond (an explicit run on several processes: gathered); `None`:
+    /// counted from `disc`.
+    pub bond_counts: Option<&'a [u32]>,
 }
 
 /// What a run produced.

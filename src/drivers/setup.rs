@@ -53,6 +53,10 @@ pub struct Setup {
     pub plan: Plan,
     /// Time spent so far.
     pub timings: Timings,
+    /// The processes the body is discretised over, when there are several
+    /// (`discretization::share`); the explicit driver exchanges its
+    /// ghost points' displacements through them.
+    pub processes: Option<Box<dyn Processes>>,
 }
 
 impl Setup {
@@ -67,8 +71,8 @@ impl Setup {
         let raw = discretization::generate_points(scene)?;
         timings.discretization = t.elapsed().as_secs_f64();
         let t = Instant::now();
-        let processes = distributed(scene);
-        let processes = processes.as_deref();
+        let shared = distributed(scene);
+        let processes = shared.as_deref();
         let free_components = |body: &Discretization| -> Result<Vec<usize>, Error> {
             let dofs = DofMap::new(body, &scene.boundaries)?;
             Ok((0..body.points.len()).map(|i| dofs.free_count(i)).collect())
@@ -99,6 +103,7 @@ impl Setup {
             loads: forces.applied,
             plan,
             timings,
+            processes: shared,
         })
     }
 }

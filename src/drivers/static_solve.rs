@@ -56,7 +56,7 @@ pub struct Counts {
     /// Isolated points removed.
     pub removed_points: usize,
     /// The bonds each process holds when the body is discretised over
-    /// several processes (the whole body's on each in a fracture scene).
+    /// several processes.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub bonds_held: Option<Vec<usize>>,
     /// What PETSc used and did (`solver.method = "petsc"`).
@@ -210,7 +210,10 @@ fn solve_with(
         mut timings,
         ..
     } = setup;
-    let mut system = System::new(scene, &disc, &dofs, model, &mut timings, notes)?;
+    // The pattern's memory check counts each process's own entries: one may
+    // refuse while the others go on (a collective call).
+    let system = System::new(scene, &disc, &dofs, model, &mut timings, notes);
+    let mut system = agreed(&scene.solver, system)?;
     let t = Instant::now();
     let rhs = right_hand_side(model, &disc, &dofs, &f_ext, 1.0);
     timings.assembly += t.elapsed().as_secs_f64();
@@ -275,8 +278,8 @@ fn solve_with(
 
 /// The stress of every point (001 Eq. 32), when the scene asks for it; a
 /// non-finite one is refused, naming the point. On a body discretised over
-/// several processes each recovers its own points' and the processes add up
-/// the rest (a collective call, made after every process's check agreed).
+/// several processes each recovers its own points' ([`gather_stress`] adds
+/// up the processes').
 fn recovered_stress(
     scene: &Scene,
     model: &AnyModel,
@@ -313,7 +316,7 @@ fn recovered_stress(
 /// over several (each holds its own points' and zeros: a collective call).
 fn gather_stress(disc: &Discretization, stress: Option<Vec<Block>>) -> Option<Vec<Block>> {
     let mut stress = stress?;
-    if disc.share.is_some() {
+    if disc.partial_share().is_some() {
         let mut flat: Vec<f64> = stress.iter().flatten().flatten().copied().collect();
         sum_shares(disc, &mut flat);
         for (block, values) in stress.iter_mut().zip(flat.chunks(9)) {

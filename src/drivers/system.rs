@@ -196,26 +196,25 @@ pub fn right_hand_side<M: Model>(
 }
 
 /// The sum of every entry of `values` over the processes of a body
-/// discretised over several (`disc.share`: each process's own points'
+/// discretised over several ([`Discretization::partial_share`]: each process's own points'
 /// share of a sum), in place; on one process they stay as they are.
 pub fn sum_shares(disc: &Discretization, values: &mut [f64]) {
     #[cfg(feature = "mpi")]
-    if disc.share.is_some() {
+    if disc.partial_share().is_some() {
         crate::solve::petsc::sum_each_over_processes(values);
     }
     let _ = (disc, values);
 }
 
-/// Whether point `i` is this process's to report (every point unless the
-/// body is discretised over several processes: [`Discretization::share`]).
+/// Whether this process answers for point `i` ([`Discretization::reports`]).
 pub fn reports(disc: &Discretization, i: usize) -> bool {
-    disc.share.as_ref().is_none_or(|s| s.owns(i))
+    disc.reports(i)
 }
 
 /// The bonds of the whole body (summed over the processes of a body
 /// discretised over several: each counts its own points' families).
 pub fn total_bonds(disc: &Discretization) -> usize {
-    if disc.share.is_none() {
+    if disc.partial_share().is_none() {
         return disc.bonds.len();
     }
     let own: usize = (0..disc.points.len())
@@ -231,7 +230,7 @@ pub fn total_bonds(disc: &Discretization) -> usize {
 /// (its own points' families and those of the layers around them: a
 /// collective call).
 pub fn bonds_held(disc: &Discretization) -> Option<Vec<usize>> {
-    let share = disc.share.as_ref()?;
+    let share = disc.partial_share()?;
     let mut held = vec![0.0; share.processes as usize];
     held[share.rank as usize] = disc.bonds.len() as f64;
     sum_shares(disc, &mut held);
@@ -244,7 +243,7 @@ pub fn bonds_held(disc: &Discretization) -> Option<Vec<usize>> {
 pub fn bond_counts(disc: &Discretization) -> Vec<u32> {
     let n = disc.points.len();
     let counts = disc.bonds.touch_counts(n);
-    if disc.share.is_none() {
+    if disc.partial_share().is_none() {
         return counts;
     }
     let mut mine: Vec<f64> = (0..n)
@@ -308,7 +307,7 @@ pub fn reactions<M: Model>(
             }
         })
         .collect();
-    if disc.share.is_some() {
+    if disc.partial_share().is_some() {
         let mut forces: Vec<f64> = reactions.iter().flat_map(|r| r.force).collect();
         sum_shares(disc, &mut forces);
         for (r, f) in reactions.iter_mut().zip(forces.chunks(3)) {

@@ -128,6 +128,9 @@ struct Summary<'a> {
     outcome: &'a crate::drivers::dynamics::Outcome,
     points: usize,
     bonds: usize,
+    /// The bonds each process held, on several processes.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    bonds_held: Option<&'a [usize]>,
     steps: usize,
     time_step: f64,
     stable_time_step: Option<f64>,
@@ -159,7 +162,7 @@ pub(crate) fn write(
         velocity: Some(&solution.v),
         stress: None,
         damage: Some(&solution.damage),
-        bond_counts: None,
+        bond_counts: solution.bond_counts.as_deref(),
     };
     let point_plan = Plan {
         profiles: plan.profiles.clone(),
@@ -183,6 +186,7 @@ pub(crate) fn write(
         outcome: &solution.outcome,
         points: solution.disc.points.len(),
         bonds: solution.bonds,
+        bonds_held: solution.bonds_held.as_deref(),
         steps: solution.steps,
         time_step: solution.time_step,
         stable_time_step: solution.stable_time_step,

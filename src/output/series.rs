@@ -34,7 +34,7 @@ impl Series {
                 velocity: s.velocity,
                 stress: None,
                 damage: Some(s.damage),
-                bond_counts: None,
+                bond_counts: s.bond_counts,
             },
         )?;
         self.entries.push((s.timestep, file));

@@ -110,7 +110,7 @@ impl Scene {
         let dynamics = explicit.as_ref().map(|e| &e.dynamics);
         driver_keys(&spec, &materials, &output, quasi_static.is_some(), dynamics)?;
         let run = solver::RunKind {
-            dynamics: dynamics.is_some(),
+            dynamics: dynamics.map(|d| d.method),
             fracture: quasi_static.is_some(),
         };
         let solver = solver::validate(&spec.solver, spec.model.kind, run)?;

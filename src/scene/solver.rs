@@ -9,6 +9,7 @@ use super::fields::positive;
 use super::spec::{ModelKind, SolverSpec};
 pub use super::spec::{Ordering, PetscSolver, Precision, SolverMethod};
 use crate::error::InputError;
+use super::DynamicsMethod;
 
 /// Bytes per GiB.
 const GIB: f64 = 1073741824.0;
@@ -57,14 +58,15 @@ impl SolverSettings {
 /// What kind of run a scene asks for, as far as the solver cares.
 #[derive(Debug, Clone, Copy, Default)]
 pub(super) struct RunKind {
-    /// `[dynamics]`: explicit dynamics, no linear solve.
-    pub(super) dynamics: bool,
+    /// `[dynamics]`: explicit dynamics (its method), no linear solve.
+    pub(super) dynamics: Option<DynamicsMethod>,
     /// `[quasi_static]`: fracture, with re-solves as bonds break.
     pub(super) fracture: bool,
 }
 
 /// Validates the keys of `[solver]` for a `run` (the `petsc` route solves
-/// static and quasi-static problems only, the latter with GAMG).
+/// static and quasi-static problems, the latter with GAMG, and runs Verlet
+/// dynamics on the processes of an MPI run).
 pub(super) fn validate(
     spec: &SolverSpec,
     model: ModelKind,
@@ -98,6 +100,13 @@ pub(super) fn validate(
             "solver.petsc_solver",
             "chooses what PETSc solves with, and applies to solver.method = \"petsc\" only; \
              remove it or set the method",
+        ));
+    }
+    if run.dynamics.is_some() && spec.petsc_solver.is_some() {
+        return Err(InputError::new(
+            "solver.petsc_solver",
+            "chooses what PETSc solves with, and an explicit dynamics run solves no linear \
+             system; remove it",
         ));
     }
     if run.fracture && spec.petsc_solver == Some(PetscSolver::Mumps) {
@@ -134,8 +143,8 @@ pub(super) fn validate(
 }
 
 /// Refuses `solver.method = "petsc"` where this build or this run cannot
-/// take it: a build without the `mpi` feature, an explicit dynamics run.
-fn check_petsc(dynamics: bool) -> Result<(), InputError> {
+/// take it: a build without the `mpi` feature, dynamic relaxation.
+fn check_petsc(dynamics: Option<DynamicsMethod>) -> Result<(), InputError> {
     if !cfg!(feature = "mpi") {
         return Err(InputError::new(
             "solver.method",
@@ -145,12 +154,13 @@ fn check_petsc(dynamics: bool) -> Result<(), InputError> {
              bodies without a factor",
         ));
     }
-    if dynamics {
+    if dynamics == Some(DynamicsMethod::Relaxation) {
         return Err(InputError::new(
             "solver.method",
-            "\"petsc\" solves static and quasi-static problems only for now (explicit \
-             dynamics, which solves no linear system, runs on one process); remove \
-             solver.method from this [dynamics] scene",
+            "\"petsc\" runs explicit dynamics with method = \"verlet\" only for now \
+             (dynamic relaxation, whose adaptive damping takes sums over the whole body \
+             every step, runs on one process); remove solver.method from this [dynamics] \
+             scene",
         ));
     }
     Ok(())
@@ -159,6 +169,7 @@ fn check_petsc(dynamics: bool) -> Result<(), InputError> {
 #[cfg(test)]
 mod tests {
     use super::{check_petsc, validate, PetscSolver, RunKind, SolverSpec};
+    use crate::scene::DynamicsMethod;
     use crate::scene::ModelKind;
 
     #[test]
@@ -195,13 +206,14 @@ mod tests {
 
     #[test]
     fn petsc_is_refused_where_it_cannot_run() {
-        let dynamic = check_petsc(true).unwrap_err();
+        let dynamic = check_petsc(Some(DynamicsMethod::Relaxation)).unwrap_err();
         assert_eq!(dynamic.field, "solver.method");
         if cfg!(feature = "mpi") {
-            assert!(check_petsc(false).is_ok());
-            assert!(dynamic.message.contains("quasi-static problems only"));
+            assert!(check_petsc(None).is_ok());
+            assert!(check_petsc(Some(DynamicsMethod::Verlet)).is_ok());
+            assert!(dynamic.message.contains("method = \"verlet\" only"));
         } else {
-            let unbuilt = check_petsc(false).unwrap_err();
+            let unbuilt = check_petsc(None).unwrap_err();
             assert!(unbuilt.message.contains("built with the mpi feature"));
             assert!(unbuilt.message.contains("\"iterative\""));
             assert_eq!(dynamic, unbuilt);

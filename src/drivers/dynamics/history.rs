@@ -69,6 +69,38 @@ pub(super) struct Balance {
 }
 
 impl Books {
+    /// The number of [`Books::shares`].
+    pub(super) const SHARES: usize = 6;
+
+    /// The sums a process keeps over its own points on several processes:
+    /// `e0`, `w_ext`, `w_int`, the damping work, the broken energy and bonds.
+    pub(super) fn shares(&self) -> [f64; Self::SHARES] {
+        [
+            self.e0,
+            self.w_ext,
+            self.w_int,
+            self.damping_work,
+            self.broken_energy,
+            self.broken_bonds as f64,
+        ]
+    }
+
+    /// These books with the sums of [`Books::shares`] set to `sums` (the
+    /// processes' shares summed).
+    pub(super) fn with_shares(&self, sums: &[f64]) -> Books {
+        Books {
+            e0: sums[0],
+            w_ext: sums[1],
+            w_int: sums[2],
+            damping_work: sums[3],
+            broken_energy: sums[4],
+            broken_bonds: sums[5] as usize,
+            scale: self.scale,
+            max_balance: self.max_balance,
+            uses_work: self.uses_work,
+        }
+    }
+
     /// The balance at a record, with the kinetic energy and (when the field
     /// has one) the stored strain energy; raises the scale.
     pub(super) fn balance(&mut self, kinetic: f64, stored: Option<f64>) -> Balance {

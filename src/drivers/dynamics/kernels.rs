@@ -38,6 +38,13 @@ use crate::model::bond_based::BondBased;
 use crate::model::Model;
 use rayon::prelude::*;
 
+/// Whether the bonds owned by point `i` are counted here (energies, breaks):
+/// every point's on one process, this process's own on several, where the
+/// bonds of other points are held to compute the forces on its own.
+fn counts(disc: &Discretization, i: usize) -> bool {
+    crate::drivers::system::reports(disc, i)
+}
+
 /// What a force evaluation broke.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Breaks {
@@ -525,8 +532,10 @@ impl PairKernel {
                         && s >= criterion.limit(owner, other)
                     {
                         self.disc.bonds.intact[b as usize] = false;
-                        breaks.bonds += 1;
-                        breaks.energy += 0.5 * self.bond_weight[b as usize] * length * s * s;
+                        if counts(&self.disc, owner) {
+                            breaks.bonds += 1;
+                            breaks.energy += 0.5 * self.bond_weight[b as usize] * length * s * s;
+                        }
                         changed = true;
                     }
                 }
@@ -624,6 +633,7 @@ impl ForceField for PairKernel {
         let factor = if self.traditional { 0.25 } else { 0.5 };
         let energy: f64 = (0..x.len())
             .into_par_iter()
+            .filter(|&i| counts(&self.disc, i))
             .map(|i| {
                 self.pairs[self.start[i]..self.start[i + 1]]
                     .iter()
@@ -687,13 +697,16 @@ impl<M: Model> FamilyKernel<M> {
         criterion.ratios(&self.model, &self.disc, u, self.linear, &mut self.ratios);
         let mut owners = Vec::new();
         let mut breaks = Breaks::default();
+        let counted: Vec<bool> = (0..self.disc.points.len())
+            .map(|i| counts(&self.disc, i))
+            .collect();
         let bonds = &mut self.disc.bonds;
-        for i in 0..self.disc.points.len() {
+        for (i, &counted) in counted.iter().enumerate() {
             let mut any = false;
             for b in bonds.offsets[i]..bonds.offsets[i + 1] {
                 if bonds.intact[b] && self.ratios[b] >= 1.0 {
                     bonds.intact[b] = false;
-                    breaks.bonds += 1;
+                    breaks.bonds += usize::from(counted);
                     any = true;
                 }
             }
@@ -703,10 +716,11 @@ impl<M: Model> FamilyKernel<M> {
         }
         if !owners.is_empty() {
             for i in self.model.refresh_owners(&self.disc, &owners) {
+                let counted = counts(&self.disc, i);
                 for b in self.disc.bonds.owned_by(i) {
                     if self.disc.bonds.intact[b] {
                         self.disc.bonds.intact[b] = false;
-                        breaks.bonds += 1;
+                        breaks.bonds += usize::from(counted);
                     }
                 }
             }
@@ -817,7 +831,13 @@ impl ForceField for TangentKernel {
             .map(|&(i, c)| u[i as usize][c as usize])
             .collect();
         let kx = self.stiffness.mul(&self.pattern, &x);
-        Some(0.5 * x.iter().zip(&kx).map(|(a, b)| a * b).sum::<f64>())
+        let free = &self.dofs.free_dofs;
+        Some(
+            0.5 * (0..x.len())
+                .filter(|&r| counts(&self.disc, free[r].0 as usize))
+                .map(|r| x[r] * kx[r])
+                .sum::<f64>(),
+        )
     }
 
     fn disc(&self) -> &Discretization {

@@ -123,6 +123,11 @@ pub struct DynamicsSolution {
     pub v: Vec<[f64; 3]>,
     /// Final damage.
     pub damage: Vec<f64>,
+    /// The bonds each process held, on several processes.
+    pub bonds_held: Option<Vec<usize>>,
+    /// Intact bonds touching each point, when `disc` does not hold every bond
+    /// (on several processes: gathered); `None`: counted from `disc`.
+    pub bond_counts: Option<Vec<u32>>,
     /// Steps taken.
     pub steps: usize,
     /// Time step (s; relaxation: 1).
@@ -184,19 +189,21 @@ fn run_with(
         loads,
         plan,
         timings,
+        processes,
         ..
     } = setup;
     let probes = plan.probes.iter().map(|p| p.1).collect();
     let explicit = Explicit::new(scene, &disc, &dofs, load_forces, probes);
     let set_names: Vec<String> = dofs.sets.iter().map(|s| s.name.clone()).collect();
-    let bonds = disc.bonds.len();
+    let bonds = crate::drivers::system::total_bonds(&disc);
+    let bonds_held = crate::drivers::system::bonds_held(&disc);
     // The setup (points, bonds, kernels, stable time step) ends here.
     let setup_seconds = |start: Instant| {
         timings.discretization + timings.neighbour_search + start.elapsed().as_secs_f64()
     };
     let mut solution = match dy.method {
         DynamicsMethod::Verlet => {
-            let run = Verlet::new(scene, explicit, disc, notes)?;
+            let run = Verlet::new(scene, explicit, disc, processes.as_deref(), notes)?;
             forward(notes, observer);
             let setup = setup_seconds(start);
             let mut solution = run.integrate(observer, notes)?;
@@ -215,6 +222,7 @@ fn run_with(
     solution.set_names = set_names;
     solution.loads = loads;
     solution.bonds = bonds;
+    solution.bonds_held = bonds_held;
     solution.bond_updates_per_second =
         bonds as f64 * solution.steps as f64 / solution.timings.integration.max(1e-12);
     solution.plan = plan;

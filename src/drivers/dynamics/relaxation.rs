@@ -134,6 +134,7 @@ impl<'a> Relaxation<'a> {
                     u: &s.u,
                     velocity: Some(&s.v),
                     damage: &damage,
+                    bond_counts: None,
                 })?;
             }
             output_seconds += clock.elapsed().as_secs_f64();
@@ -300,6 +301,7 @@ impl<'a> Relaxation<'a> {
             ));
         }
         DynamicsSolution {
+            bond_counts: None,
             disc: self.kernel.into_disc(),
             u: s.u,
             v: s.v,
@@ -314,6 +316,7 @@ impl<'a> Relaxation<'a> {
             outcome,
             timings,
             bonds: 0,
+            bonds_held: None,
             bond_updates_per_second: 0.0,
             max_balance_error: 0.0,
             kernel,

@@ -1,11 +1,26 @@
 //! Velocity Verlet with mass-proportional damping (module docs of [`super`]):
 //! the time step and its checks, the initial state, the steps, the energy
 //! books and the records.
+//!
+//! **On several processes** (`solver.method = "petsc"` in an MPI run; the body
+//! discretised over them: [`crate::discretization::share`]) each process
+//! steps only its own points, from forces that its own and ghost bonds give
+//! them: the force on a point needs the bonds touching it and the
+//! displacements within a bond length (the bond-based model) or two (the
+//! shear model's owner kinematics), all within the families a process holds.
+//! Before every force evaluation the ghost points' displacements come from
+//! their processes ([`Halo`]); a bond is broken by every process that holds it,
+//! from the same displacements, and counted by its owner's. The energy books,
+//! the reactions and the probes are each process's own points' and are summed
+//! at a record; the divergence check sums its two numbers every step, so that
+//! every process stops at the same step; snapshots and the final state are
+//! gathered on every process.
 
 use super::history::{kinetic, probe_values, set_sums, wants_snapshot, Books, Record};
 use super::kernels::ForceField;
 use super::setup::{self, Constrained, Explicit, Loads};
 use super::{diverged_point, DynamicsSolution, DynamicsTimings, Outcome};
+use crate::discretization::share::{agreed, Halo, Processes};
 use crate::discretization::Discretization;
 use crate::drivers::{forward, Observer, Progress, Snapshot};
 use crate::error::{Error, InputError, NumericalError};
@@ -34,6 +49,16 @@ pub(super) struct Verlet<'a> {
     /// The stable time step (`dt` above it only with `force_time_step`).
     pub(super) stable_dt: f64,
     steps: usize,
+    /// The processes the points are shared with (module docs), when several.
+    shared: Option<Shared<'a>>,
+}
+
+/// The processes of a distributed run and this one's ghost points.
+struct Shared<'a> {
+    processes: &'a dyn Processes,
+    halo: Halo,
+    /// Whether each point is this process's.
+    own: Vec<bool>,
 }
 
 /// The state of a Verlet run between steps.
@@ -57,8 +82,9 @@ impl<'a> Verlet<'a> {
     /// number of steps and the force field of `scene` on `disc`.
     pub(super) fn new(
         scene: &'a Scene,
-        explicit: Explicit,
+        mut explicit: Explicit,
         disc: Discretization,
+        processes: Option<&'a dyn Processes>,
         notes: &mut Notes,
     ) -> Result<Self, Error> {
         let dy = scene.dynamics.as_ref().expect("a dynamics scene");
@@ -72,7 +98,25 @@ impl<'a> Verlet<'a> {
                     * p.volume[i]
             })
             .collect();
-        let stable_dt = stable_time_step(scene, &disc, &mass, dy)?;
+        let shared = match (processes, disc.partial_share()) {
+            (Some(processes), Some(share)) => Some(Shared {
+                processes,
+                halo: Halo::new(share, processes),
+                own: (0..p.len()).map(|i| share.owns(i)).collect(),
+            }),
+            _ => None,
+        };
+        if let Some(shared) = &shared {
+            // Only own points are stepped; the ghosts' come from their processes.
+            for (free, &own) in explicit.free.iter_mut().zip(&shared.own) {
+                if !own {
+                    *free = [false; 3];
+                }
+            }
+            explicit.constrained.retain(|c| shared.own[c.point as usize]);
+        }
+        let own = |i: usize| shared.as_ref().is_none_or(|s| s.own[i]);
+        let stable_dt = stable_time_step(scene, &disc, &mass, dy, &own, processes)?;
         let dt = match dy.time_step {
             Some(t) => t,
             None => dy.safety_factor * stable_dt,
@@ -89,7 +133,63 @@ impl<'a> Verlet<'a> {
             dt,
             stable_dt,
             steps,
+            shared,
         })
+    }
+
+    /// Whether point `i` is this process's.
+    fn owns(&self, i: usize) -> bool {
+        self.shared.as_ref().is_none_or(|s| s.own[i])
+    }
+
+    /// Every entry of `values` summed over the processes (a collective call).
+    fn sum(&self, values: &mut [f64]) {
+        if let Some(s) = &self.shared {
+            s.processes.sum(values);
+        }
+    }
+
+    /// `result` here, unless another process failed (a collective call).
+    fn agreed<T>(&self, result: Result<T, Error>) -> Result<T, Error> {
+        agreed(self.shared.as_ref().map(|s| s.processes), result)
+    }
+
+    /// The ghost points' displacements from their processes (a collective call).
+    fn exchange(&self, u: &mut [[f64; 3]]) {
+        if let Some(s) = &self.shared {
+            s.halo.exchange(s.processes, u);
+        }
+    }
+
+    /// Every point's `values` from its process (a collective call).
+    fn gather<const K: usize>(&self, values: &[[f64; K]]) -> Vec<[f64; K]> {
+        let Some(s) = &self.shared else {
+            return values.to_vec();
+        };
+        let mut flat: Vec<f64> = values
+            .iter()
+            .zip(&s.own)
+            .flat_map(|(v, &own)| v.map(|x| if own { x } else { 0.0 }))
+            .collect();
+        s.processes.sum(&mut flat);
+        flat.chunks_exact(K)
+            .map(|c| std::array::from_fn(|k| c[k]))
+            .collect()
+    }
+
+    /// Every point's count of intact bonds from its process, on several
+    /// processes (a collective call); `None` on one, where the
+    /// discretisation holds every bond.
+    fn bond_counts(&self) -> Option<Vec<u32>> {
+        self.shared
+            .as_ref()
+            .map(|_| crate::drivers::system::bond_counts(self.kernel.disc()))
+    }
+
+    /// Every point's damage from its process (a collective call).
+    fn damage(&self) -> Vec<f64> {
+        let damage: Vec<[f64; 1]> = self.kernel.damage().into_iter().map(|d| [d]).collect();
+        self.gather(&damage).into_iter().map(|[d]| d).collect()
     }
 
     /// Whether the scene forced a time step above the stable one.
@@ -134,25 +234,29 @@ impl<'a> Verlet<'a> {
     /// t = 0) whose displacement, velocity, kinetic energy or internal forces
     /// are beyond double precision, naming the entry that set the point: the
     /// run could not take a step (a velocity of 1e300 m/s was reported as a
-    /// time step too large).
+    /// time step too large). Only the points `own` flags (this process's).
     fn check_initial_state(
         &self,
         u: &[[f64; 3]],
         v: &[[f64; 3]],
         f_int: &[[f64; 3]],
+        own: &dyn Fn(usize) -> bool,
     ) -> Result<(), Error> {
         let kinetic = |i: usize| 0.5 * self.mass[i] * crate::vector::dot(&v[i], &v[i]);
-        let moving = (0..v.len()).find(|&i| !kinetic(i).is_finite());
-        let total: f64 = (0..v.len()).map(kinetic).sum();
+        let moving = (0..v.len()).filter(|&i| own(i)).find(|&i| !kinetic(i).is_finite());
+        let total: f64 = (0..v.len()).filter(|&i| own(i)).map(kinetic).sum();
         let moving =
             moving.or_else(|| (!total.is_finite()).then(|| diverged_point(u, v, &self.mass)));
         // A non-finite displacement, else the largest displacement when a
         // force overflowed (the point whose displacement caused it).
         let strained = (0..u.len())
+            .filter(|&i| own(i))
             .find(|&i| u[i].iter().any(|x| !x.is_finite()))
             .or_else(|| {
-                f_int.iter().flatten().any(|x| !x.is_finite()).then(|| {
+                let overflowed = |i: usize| f_int[i].iter().any(|x| !x.is_finite());
+                (0..u.len()).any(|i| own(i) && overflowed(i)).then(|| {
                     (0..u.len())
+                        .filter(|&i| own(i))
                         .max_by(|&a, &b| {
                             crate::vector::magnitude(&u[a])
                                 .total_cmp(&crate::vector::magnitude(&u[b]))
@@ -168,9 +272,8 @@ impl<'a> Verlet<'a> {
         if !velocity && crate::vector::magnitude(&u[point]) == 0.0 {
             // Forces that are not finite without any displacement: the
             // model's quantities at this scale leave double precision.
-            let i = f_int
-                .iter()
-                .position(|f| f.iter().any(|x| !x.is_finite()))
+            let i = (0..f_int.len())
+                .find(|&i| own(i) && f_int[i].iter().any(|x| !x.is_finite()))
                 .unwrap_or(point);
             return Err(crate::discretization::beyond_double_precision(
                 self.kernel.disc(),
@@ -267,7 +370,15 @@ impl<'a> Verlet<'a> {
         observer: &mut dyn Observer,
         notes: &mut Notes,
     ) -> Result<DynamicsSolution, Error> {
-        let (u, v) = self.initial_state(notes);
+        let (mut u, mut v) = self.initial_state(notes);
+        if let Some(s) = &self.shared {
+            // Ghosts move with their processes; their own velocities stay there.
+            v.iter_mut()
+                .zip(&s.own)
+                .filter(|(_, &own)| !own)
+                .for_each(|(vi, _)| *vi = [0.0; 3]);
+        }
+        self.exchange(&mut u);
         forward(notes, observer);
         let (mut state, mut books) = self.start(u, v)?;
         let mut records = Vec::new();
@@ -289,15 +400,19 @@ impl<'a> Verlet<'a> {
                 records.push(self.record(&state, &mut books, step)?);
             }
             if wants_snapshot(self.scene, step, last) {
-                let damage = self.kernel.damage();
-                observer.snapshot(&Snapshot {
+                let damage = self.damage();
+                let (u, v) = (self.gather(&state.u), self.gather(&state.v));
+                let counts = self.bond_counts();
+                let written = observer.snapshot(&Snapshot {
                     step,
                     timestep: state.t,
                     disc: self.kernel.disc(),
-                    u: &state.u,
-                    velocity: Some(&state.v),
+                    u: &u,
+                    velocity: Some(&v),
                     damage: &damage,
-                })?;
+                    bond_counts: counts.as_deref(),
+                });
+                self.agreed(written)?;
             }
             output_seconds += clock.elapsed().as_secs_f64();
         }
@@ -374,7 +489,9 @@ impl<'a> Verlet<'a> {
         let mut force = vec![[0.0; 3]; n];
         let mut a = vec![[0.0; 3]; n];
         let broken = self.kernel.forces(&u, &mut f_int);
-        self.check_initial_state(&u, &v, &f_int)?;
+        let own = |i: usize| self.owns(i);
+        let checked = self.check_initial_state(&u, &v, &f_int, &own);
+        self.agreed(checked)?;
         total(&f_int, &mut force, 0.0, &self.explicit.loads);
         let (mass, free) = (&self.mass, &self.explicit.free);
         a.par_iter_mut().enumerate().for_each(|(i, ai)| {
@@ -389,6 +506,9 @@ impl<'a> Verlet<'a> {
         let uses_work = self.kernel.strain_energy(&u).is_none();
         let initial_strain = self.kernel.strain_energy(&u).unwrap_or(0.0);
         let e0 = kinetic(&v, mass) + initial_strain;
+        // The scale of the balance error starts from the whole body's energy.
+        let mut whole = [e0];
+        self.sum(&mut whole);
         let books = Books {
             e0,
             w_ext: 0.0,
@@ -396,7 +516,7 @@ impl<'a> Verlet<'a> {
             damping_work: 0.0,
             broken_energy: broken.energy,
             broken_bonds: broken.bonds,
-            scale: e0.abs(),
+            scale: whole[0].abs(),
             max_balance: 0.0,
             uses_work,
         };
@@ -437,6 +557,7 @@ impl<'a> Verlet<'a> {
         books.w_ext += 0.5 * (loads.power(s.t, &s.du) + loads.power(t1, &s.du));
         let power_int_old = power(&s.f_int, &s.du);
         let clock = Instant::now();
+        self.exchange(&mut s.u);
         let breaks = self.kernel.forces(&s.u, &mut s.f_int);
         let force_seconds = clock.elapsed().as_secs_f64();
         books.broken_bonds += breaks.bonds;
@@ -445,7 +566,10 @@ impl<'a> Verlet<'a> {
         let power_int_new = power(&s.f_int, &s.du);
         books.w_int -= 0.5 * (power_int_old + power_int_new);
         let (damping_step, twice_kinetic) = self.second_kick(s);
-        if !(twice_kinetic.is_finite() && damping_step.is_finite()) {
+        // Summed over the processes: a non-finite one makes the sum so on all.
+        let mut check = [damping_step, twice_kinetic];
+        self.sum(&mut check);
+        if !(check[0].is_finite() && check[1].is_finite()) {
             return Err(self.diverged(step, t1, &s.u, &s.v));
         }
         books.damping_work += damping_step;
@@ -520,7 +644,47 @@ impl<'a> Verlet<'a> {
         } else {
             self.kernel.strain_energy(&s.u)
         };
-        let balance = books.balance(e_kin, stored);
+        let e = &self.explicit;
+        let mut reactions = set_sums(&e.constrained, e.sets, &s.support);
+        let mut probes = probe_values(&e.probes, self.kernel.disc(), &s.u, &s.v);
+        let (e_kin, stored, mut whole) = match &self.shared {
+            None => (e_kin, stored, None),
+            Some(_) => {
+                // Each process's own points' shares, summed.
+                let mut sums = vec![e_kin, stored.unwrap_or(0.0)];
+                sums.extend(books.shares());
+                sums.extend(reactions.iter().flatten());
+                for (&i, (u, v, damage)) in e.probes.iter().zip(&probes) {
+                    let own = f64::from(u8::from(self.owns(i)));
+                    sums.extend(u.iter().chain(v).chain([damage]).map(|x| own * x));
+                }
+                self.sum(&mut sums);
+                let (shares, rest) = sums[2..].split_at(Books::SHARES);
+                let whole = books.with_shares(shares);
+                let (sets, rest) = rest.split_at(3 * reactions.len());
+                for (r, f) in reactions.iter_mut().zip(sets.chunks_exact(3)) {
+                    r.copy_from_slice(f);
+                }
+                for (p, values) in probes.iter_mut().zip(rest.chunks_exact(7)) {
+                    *p = (
+                        std::array::from_fn(|c| values[c]),
+                        std::array::from_fn(|c| values[3 + c]),
+                        values[6],
+                    );
+                }
+                (sums[0], stored.map(|_| sums[1]), Some(whole))
+            }
+        };
+        // The whole body's books: summed over the processes, whose largest
+        // energy and balance error this process keeps.
+        let (balance, books) = match whole.as_mut() {
+            Some(whole) => {
+                let balance = whole.balance(e_kin, stored);
+                (books.scale, books.max_balance) = (whole.scale, whole.max_balance);
+                (balance, &*whole)
+            }
+            None => (books.balance(e_kin, stored), &*books),
+        };
         let Some(relative) = balance.relative else {
             // Every velocity is finite (checked each step), but an energy or
             // a work left double precision.
@@ -542,7 +706,6 @@ impl<'a> Verlet<'a> {
             }
             .into());
         }
-        let e = &self.explicit;
         Ok(Record {
             step,
             time: s.t,
@@ -554,8 +717,8 @@ impl<'a> Verlet<'a> {
             balance_error: relative,
             broken_bonds: books.broken_bonds,
             residual: 0.0,
-            reactions: set_sums(&e.constrained, e.sets, &s.support),
-            probes: probe_values(&e.probes, self.kernel.disc(), &s.u, &s.v),
+            reactions,
+            probes,
         })
     }
 
@@ -567,12 +730,15 @@ impl<'a> Verlet<'a> {
         records: Vec<Record>,
         timings: DynamicsTimings,
     ) -> DynamicsSolution {
-        let damage = self.kernel.damage();
+        let damage = self.damage();
+        let (u, v) = (self.gather(&s.u), self.gather(&s.v));
+        let bond_counts = self.bond_counts();
         let kernel = setup::kernel_description(self.scene, self.kernel.as_ref());
         DynamicsSolution {
+            bond_counts,
             disc: self.kernel.into_disc(),
-            u: s.u,
-            v: s.v,
+            u,
+            v,
             damage,
             steps: self.steps,
             time_step: self.dt,
@@ -584,6 +750,7 @@ impl<'a> Verlet<'a> {
             outcome: Outcome::Completed,
             timings,
             bonds: 0,
+            bonds_held: None,
             bond_updates_per_second: 0.0,
             max_balance_error: books.max_balance,
             kernel,
@@ -610,19 +777,30 @@ fn power(f: &[[f64; 3]], du: &[[f64; 3]]) -> f64 {
 /// The stable time step of `scene` on `disc` (module docs of [`super`]),
 /// refused when it left the floating-point range; a given `dynamics.time_step`
 /// above it is refused unless forced.
+///
+/// On several processes, each over its `own` points (whose bonds it all
+/// holds), the least over the processes (a collective call).
 fn stable_time_step(
     scene: &Scene,
     disc: &Discretization,
     mass: &[f64],
     dy: &Dynamics,
+    own: &dyn Fn(usize) -> bool,
+    processes: Option<&dyn Processes>,
 ) -> Result<f64, Error> {
-    let stable = setup::stable_time_steps(scene, disc, mass)?;
-    let (critical_point, stable_dt) = stable
+    let stable = agreed(processes, setup::stable_time_steps(scene, disc, mass))?;
+    let (critical_point, mut stable_dt) = stable
         .iter()
         .copied()
         .enumerate()
+        .filter(|&(i, _)| own(i))
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap_or((0, f64::INFINITY));
+    if let Some(processes) = processes {
+        let mut least = [stable_dt];
+        processes.min(&mut least);
+        stable_dt = least[0];
+    }
     if !(stable_dt.is_finite() && stable_dt > 0.0) {
         // Bond stiffnesses that under- or overflowed at this scale.
         return Err(crate::discretization::beyond_double_precision(

@@ -327,6 +327,7 @@ impl Run<'_> {
             u: &u,
             velocity: None,
             damage: &damage,
+            bond_counts: None,
         })
     }
 

@@ -75,6 +75,27 @@ extern "C" {
         op: *const Opaque,
         comm: MPI_Comm,
     ) -> c_int;
+    pub fn MPI_Alltoall(
+        send: *const c_void,
+        send_count: c_int,
+        send_type: *const Opaque,
+        receive: *mut c_void,
+        receive_count: c_int,
+        receive_type: *const Opaque,
+        comm: MPI_Comm,
+    ) -> c_int;
+    pub fn MPI_Alltoallv(
+        send: *const c_void,
+        send_counts: *const c_int,
+        send_offsets: *const c_int,
+        send_type: *const Opaque,
+        receive: *mut c_void,
+        receive_counts: *const c_int,
+        receive_offsets: *const c_int,
+        receive_type: *const Opaque,
+        comm: MPI_Comm,
+    ) -> c_int;
+    pub static ompi_mpi_int: Opaque;
     pub fn MPI_Bcast(
         buffer: *mut c_void,
         count: c_int,

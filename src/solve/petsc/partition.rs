@@ -38,8 +38,8 @@ fn own_unknowns(layout: Layout) -> Result<Vec<usize>, Error> {
 
 /// The point columns of `K` this process assembles (`pattern`: the point
 /// level): those of its own points ([`Numbering`]) and of every point coupled
-/// to them (its ghost points: within a horizon for the bond-based model, two
-/// for the shear model), whose columns hold the rest of its own rows.
+/// to them (its ghost points: within a bond length for the bond-based model,
+/// two for the shear model), whose columns hold the rest of its own rows.
 pub(crate) fn assembled_columns(pattern: &Pattern, layout: Layout) -> Result<Vec<bool>, Error> {
     let (numbering, rank) = this_part(layout)?;
     let mut keep = vec![false; pattern.row_offsets.len() - 1];

@@ -133,6 +133,65 @@ fn reduce_each_over_processes(values: &mut [f64], op: *const ffi::Opaque) {
     }
 }
 
+/// `send[r]` to process `r`, for every `r`; returns what every process sent
+/// this one, by sender (`MPI_Alltoall` of the counts, then `MPI_Alltoallv`:
+/// a collective call; most lists are empty in a halo exchange).
+pub(crate) fn all_to_all(send: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let count = |n: usize| c_int::try_from(n).unwrap_or(c_int::MAX);
+    let send_counts: Vec<c_int> = send.iter().map(|s| count(s.len())).collect();
+    let mut receive_counts = vec![0 as c_int; send.len()];
+    let offsets = |counts: &[c_int]| -> Vec<c_int> {
+        let mut at = 0;
+        counts
+            .iter()
+            .map(|&c| {
+                let o = at;
+                at += c;
+                o
+            })
+            .collect()
+    };
+    let flat: Vec<f64> = send.iter().flatten().copied().collect();
+    // SAFETY: MPI is initialised (a `Processes` exists only then); one count
+    // per process each way, buffers of the counts' sums; MPI's default
+    // error handler aborts the run instead of returning a code.
+    unsafe {
+        let int = &raw const ffi::ompi_mpi_int;
+        ffi::MPI_Alltoall(
+            send_counts.as_ptr().cast(),
+            1,
+            int,
+            receive_counts.as_mut_ptr().cast(),
+            1,
+            int,
+            ffi::PETSC_COMM_WORLD,
+        );
+    }
+    let total: usize = receive_counts.iter().map(|&c| c as usize).sum();
+    let mut received = vec![0.0; total];
+    let (send_offsets, receive_offsets) = (offsets(&send_counts), offsets(&receive_counts));
+    // SAFETY: as above; the offsets lie within the flat buffers.
+    unsafe {
+        let double = &raw const ffi::ompi_mpi_double;
+        ffi::MPI_Alltoallv(
+            flat.as_ptr().cast(),
+            send_counts.as_ptr(),
+            send_offsets.as_ptr(),
+            double,
+            received.as_mut_ptr().cast(),
+            receive_counts.as_ptr(),
+            receive_offsets.as_ptr(),
+            double,
+            ffi::PETSC_COMM_WORLD,
+        );
+    }
+    receive_counts
+        .iter()
+        .zip(&receive_offsets)
+        .map(|(&c, &o)| received[o as usize..(o + c) as usize].to_vec())
+        .collect()
+}
+
 /// Rank 0's `path` on every process (a collective call; the other ranks
 /// pass `None`): where they write their pieces of rank 0's results.
 pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
@@ -200,6 +259,10 @@ impl crate::discretization::share::Processes for Processes {
 
     fn min(&self, values: &mut [f64]) {
         reduce_each_over_processes(values, &raw const ffi::ompi_mpi_op_min);
+    }
+
+    fn all_to_all(&self, send: &[Vec<f64>]) -> Vec<Vec<f64>> {
+        all_to_all(send)
     }
 }
 
