@@ -58,9 +58,10 @@ extern "C" {
     /// Indexed by `KSPConvergedReason`, negative values included.
     pub static KSPConvergedReasons: *const *const c_char;
 
-    /// Open MPI's predefined handles (`MPI_DOUBLE`, `MPI_BYTE`, `MPI_SUM` and `MPI_MIN` are
-    /// their addresses).
+    /// Open MPI's predefined handles (`MPI_DOUBLE`, `MPI_INT`, `MPI_BYTE`, `MPI_SUM` and
+    /// `MPI_MIN` are their addresses).
     pub static ompi_mpi_double: Opaque;
+    pub static ompi_mpi_int: Opaque;
     pub static ompi_mpi_byte: Opaque;
     pub static ompi_mpi_op_sum: Opaque;
     pub static ompi_mpi_op_min: Opaque;
@@ -95,7 +96,6 @@ extern "C" {
         receive_type: *const Opaque,
         comm: MPI_Comm,
     ) -> c_int;
-    pub static ompi_mpi_int: Opaque;
     pub fn MPI_Bcast(
         buffer: *mut c_void,
         count: c_int,
