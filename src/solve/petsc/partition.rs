@@ -156,8 +156,9 @@ impl Numbering {
         let part_of = |i: usize| layout.part.map_or(0, |p| p[i] as usize);
         if layout.part.is_none() && processes > 1 {
             return Err(NumericalError::Solver(format!(
-                "the points were not split over the {processes} processes of this run (a \
-                 defect: the setup splits a body on the petsc route)"
+                "the points were not split over the {processes} processes of this run: the \
+                 setup splits them when PETSc is initialised, so a library caller holds a \
+                 dhpd::mpi::Petsc before it calls dhpd::check or dhpd::run"
             ))
             .into());
         }
