@@ -318,8 +318,13 @@ const FRACTURE_SCENES: [&str; 4] = [
 ];
 
 /// Explicit dynamics on several processes: a pulse in a free plate (the
-/// shear model) and dynamic mode I fracture (bond-based, 2,700 bonds break).
-const DYNAMICS_SCENES: [&str; 2] = ["dynamics_wave_shear", "dynamics_mode_one"];
+/// shear model's owner kernels, and its linearised kernel `F = −K u`) and
+/// dynamic mode I fracture (bond-based pairs, 2,700 bonds break).
+const DYNAMICS_SCENES: [&str; 3] = [
+    "dynamics_wave_shear",
+    "dynamics_wave_linearised",
+    "dynamics_mode_one",
+];
 
 /// Agreement of an explicit run on several processes with one: the forces
 /// on a point are the same bond terms summed in another order, so the runs
