@@ -279,6 +279,11 @@ pub enum NumericalError {
     /// faer reported an allocation or other generic failure.
     #[error("linear solver failure: {0}")]
     Solver(String),
+    /// Another process of an MPI run stopped with an error (this one stops too).
+    #[error(
+        "{count} other process(es) of this MPI run stopped with an error (printed by their rank)"
+    )]
+    OtherProcesses { count: usize },
     /// A PETSc call failed (the `mpi` build): the function, its error code
     /// and PETSc's text for it (PETSc prints its own trace on stderr).
     #[cfg(feature = "mpi")]

@@ -318,12 +318,14 @@ const FRACTURE_SCENES: [&str; 4] = [
 ];
 
 /// Explicit dynamics on several processes: a pulse in a free plate (the
-/// shear model's owner kernels, and its linearised kernel `F = −K u`) and
-/// dynamic mode I fracture (bond-based pairs, 2,700 bonds break).
-const DYNAMICS_SCENES: [&str; 3] = [
+/// shear model's owner kernels, and its linearised kernel `F = −K u`),
+/// dynamic mode I fracture (bond-based pairs, 2,700 bonds break) and a
+/// shear-model strip breaking in compression.
+const DYNAMICS_SCENES: [&str; 4] = [
     "dynamics_wave_shear",
     "dynamics_wave_linearised",
     "dynamics_mode_one",
+    "dynamics_shear_compression",
 ];
 
 /// Agreement of an explicit run on several processes with one: the forces

@@ -14,9 +14,11 @@
 //! its ghost columns are not, and nothing reads them. An explicit run
 //! evaluates the same terms with the displacements of the owners' families:
 //! within `R` of an own point for the bond-based pair forces, `2R` for the
-//! shear model's owner kinematics, which are the ghost points whose
-//! displacements it receives each step ([`Halo`]); the shear model's
-//! explicit run searches two bond lengths deep. Points themselves
+//! shear model's owner kinematics and `3R` for its breakage test (a bond
+//! `o → j` breaks in compression only if neither `θ_o` nor `θ_j` is
+//! positive, and `θ_j` reads `j`'s family); these are the ghost points whose
+//! displacements it receives each step ([`Halo`]), so the shear model's
+//! explicit run searches three bond lengths deep. Points themselves
 //! (coordinates, volumes, horizons) stay on every process: the parts are cut
 //! from them ([`parts`]) before any bond is searched. The fracture driver
 //! decides every bond on every process, so a fracture scene searches them
@@ -165,12 +167,12 @@ impl Share {
 
     /// The bond lengths around its own points whose families a process
     /// searches for a scene (module docs): one for a static solve and the
-    /// bond-based model's explicit run, two for the shear model's; every
+    /// bond-based model's explicit run, three for the shear model's; every
     /// point's (`None`) for fracture.
     pub fn depth(scene: &crate::scene::Scene) -> Option<f64> {
         match (&scene.quasi_static, &scene.dynamics, scene.model.kind) {
             (Some(_), _, _) => None,
-            (None, Some(_), ModelKind::Shear) => Some(2.0),
+            (None, Some(_), ModelKind::Shear) => Some(3.0),
             _ => Some(1.0),
         }
     }
@@ -337,10 +339,9 @@ pub fn agreed<T>(processes: Option<&dyn Processes>, result: Result<T, Error>) ->
     let mut failed = [f64::from(u8::from(result.is_err()))];
     processes.sum(&mut failed);
     match result {
-        Ok(_) if failed[0] > 0.0 => Err(NumericalError::Solver(format!(
-            "{} other process(es) of this MPI run stopped with an error (printed by their rank)",
-            failed[0]
-        ))
+        Ok(_) if failed[0] > 0.0 => Err(NumericalError::OtherProcesses {
+            count: failed[0] as usize,
+        }
         .into()),
         result => result,
     }

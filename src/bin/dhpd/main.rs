@@ -146,7 +146,7 @@ impl World {
     }
 
     /// `result` where every process has `Ok`, else an error (collective).
-    fn on_every_process(&self, result: Result<(), Error>) -> Result<(), Error> {
+    fn on_every_process<T>(&self, result: Result<T, Error>) -> Result<T, Error> {
         #[cfg(feature = "mpi")]
         return dhpd::mpi::on_every_process(result);
         #[cfg(not(feature = "mpi"))]
@@ -211,7 +211,9 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
     let several = world.size() > 1;
     if world.rank() > 0 {
         // Each writes its piece of the points' VTK file into rank 0's staging
-        // directory, which rank 0 commits once every piece is written.
+        // directory, which rank 0 commits once every piece is written (once
+        // rank 0 could make it: an error there stops every rank).
+        world.on_every_process(Ok(()))?;
         let staging = world.share_path(None)?;
         let solution = dhpd::run(scene, &mut ())?;
         let written = match &solution {
@@ -230,7 +232,7 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
     let mut notes = Notes::default();
     let results = Results::new(&dir, &mut notes);
     print_notes(&mut notes);
-    let results = results?.in_pieces(world.size());
+    let results = world.on_every_process(results)?.in_pieces(world.size());
     if several {
         world.share_path(Some(results.staging_path()))?;
     }

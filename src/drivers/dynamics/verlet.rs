@@ -6,8 +6,10 @@
 //! discretised over them: [`crate::discretization::share`]) each process
 //! steps only its own points, from forces that its own and ghost bonds give
 //! them: the force on a point needs the bonds touching it and the
-//! displacements within a bond length (the bond-based model) or two (the
-//! shear model's owner kinematics), all within the families a process holds.
+//! displacements within a bond length (the bond-based model) or three (the
+//! shear model: its owners' kinematics reach two, and a bond's breakage test
+//! reads its neighbour's dilatation, a family further), all within the
+//! families a process holds.
 //! Before every force evaluation the ghost points' displacements come from
 //! their processes ([`Halo`]); a bond is broken by every process that holds it,
 //! from the same displacements, and counted by its owner's. The energy books,
@@ -123,7 +125,10 @@ impl<'a> Verlet<'a> {
         };
         check_damping(dy, dt)?;
         let steps = steps(dy, dt)?;
-        let kernel = setup::kernel(scene, disc, notes)?;
+        // The linearised kernel's pattern is refused by a memory check that
+        // counts this process's own entries: one may refuse while the others
+        // go on (a collective call).
+        let kernel = agreed(processes, setup::kernel(scene, disc, notes))?;
         Ok(Verlet {
             scene,
             dy,
@@ -789,7 +794,7 @@ fn stable_time_step(
     processes: Option<&dyn Processes>,
 ) -> Result<f64, Error> {
     let stable = agreed(processes, setup::stable_time_steps(scene, disc, mass))?;
-    let (critical_point, mut stable_dt) = stable
+    let (mut critical_point, mut stable_dt) = stable
         .iter()
         .copied()
         .enumerate()
@@ -797,9 +802,15 @@ fn stable_time_step(
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .unwrap_or((0, f64::INFINITY));
     if let Some(processes) = processes {
+        // The least step over the processes, and the least point that has it.
         let mut least = [stable_dt];
         processes.min(&mut least);
-        stable_dt = least[0];
+        let mut point = [match stable_dt.to_bits() == least[0].to_bits() {
+            true => critical_point as f64,
+            false => f64::INFINITY,
+        }];
+        processes.min(&mut point);
+        (stable_dt, critical_point) = (least[0], point[0] as usize);
     }
     if !(stable_dt.is_finite() && stable_dt > 0.0) {
         // Bond stiffnesses that under- or overflowed at this scale.
