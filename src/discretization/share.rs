@@ -63,10 +63,10 @@ pub trait Processes {
 }
 
 /// The exchange of the ghost points' values each step of a distributed
-/// explicit run: every process sends the values of its own points that
-/// another holds the families of (`Share::searched`) and receives those of
-/// its own such points from their processes. Built once (the processes tell
-/// each other which points they need).
+/// explicit run: every process sends the values of its own points whose
+/// families another process holds (`Share::searched`), and receives the
+/// values of the points whose families it holds but another process owns.
+/// Built once (the processes tell each other which points they need).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Halo {
     /// Per process: the own points whose values it receives from this one, in order.
