@@ -83,6 +83,7 @@ internal!(
     memory,
     model,
     notes,
+    processes,
     reference,
     solve,
     vector

@@ -10,7 +10,7 @@
 //! through a point), before any factorisation.
 
 use super::dofs::{DofMap, PRESCRIBED};
-use crate::discretization::share::Processes;
+use crate::processes::Processes;
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
 

@@ -31,7 +31,8 @@ use crate::notes::Notes;
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
 use crate::vector::{norm, sub};
 use groups::PointGroup;
-use share::{agreed, Distribution, Processes, Share};
+use crate::processes::{agreed, Processes};
+use share::{Distribution, Share};
 use std::ops::Range;
 
 /// Per-point data, structure of arrays.

@@ -24,12 +24,13 @@
 //! decides every bond on every process, so a fracture scene searches them
 //! all and shares only the parts.
 //!
-//! What is global is made so by collective calls ([`Processes`]): the count
+//! What is global is made so by collective calls (`crate::processes`): the count
 //! of bonds touching a point is complete for own points only, so isolated
 //! points are decided by each point's process and agreed by a sum.
 
 use super::Points;
 use crate::error::{Error, NumericalError};
+use crate::processes::Processes;
 use crate::scene::ModelKind;
 use kiddo::{ImmutableKdTree, SquaredEuclidean};
 use rayon::prelude::*;
@@ -42,24 +43,6 @@ pub struct Distribution<'a> {
     pub processes: &'a dyn Processes,
     /// The free components of every point of a body (bonds not searched).
     pub free_components: &'a dyn Fn(&super::Discretization) -> Result<Vec<usize>, Error>,
-}
-
-/// The processes of a distributed run as the discretisation sees them (the
-/// MPI build gives them): their number, this one's rank and the collective
-/// calls that make local answers global. Every process calls every method in
-/// the same order.
-pub trait Processes {
-    /// The number of processes.
-    fn size(&self) -> usize;
-    /// This process's rank.
-    fn rank(&self) -> usize;
-    /// Every entry of `values` summed over the processes, in place.
-    fn sum(&self, values: &mut [f64]);
-    /// Every entry of `values` the least over the processes, in place.
-    fn min(&self, values: &mut [f64]);
-    /// `send[r]` to process `r`, for every `r`; what every process sent this
-    /// one, by sender.
-    fn all_to_all(&self, send: &[Vec<f64>]) -> Vec<Vec<f64>>;
 }
 
 /// The exchange of the ghost points' values each step of a distributed
@@ -328,21 +311,4 @@ fn within<const K: usize>(
                     <= r2
         })
         .collect())
-}
-
-/// `result` on this process, unless another failed: then an error here too
-/// (a collective call: no process goes on alone into the next collective).
-pub fn agreed<T>(processes: Option<&dyn Processes>, result: Result<T, Error>) -> Result<T, Error> {
-    let Some(processes) = processes else {
-        return result;
-    };
-    let mut failed = [f64::from(u8::from(result.is_err()))];
-    processes.sum(&mut failed);
-    match result {
-        Ok(_) if failed[0] > 0.0 => Err(NumericalError::OtherProcesses {
-            count: failed[0] as usize,
-        }
-        .into()),
-        result => result,
-    }
 }

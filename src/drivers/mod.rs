@@ -10,6 +10,7 @@
 pub mod dynamics;
 pub mod quasi_static;
 pub mod setup;
+pub mod shares;
 pub mod static_solve;
 pub mod system;
 

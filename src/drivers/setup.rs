@@ -8,7 +8,8 @@
 use crate::assembly::dofs::DofMap;
 use crate::assembly::loads::{external_forces, AppliedLoad};
 use crate::assembly::rigid_modes;
-use crate::discretization::share::{Distribution, Processes};
+use crate::discretization::share::Distribution;
+use crate::processes::Processes;
 use crate::discretization::{self, Discretization};
 use crate::error::{Error, InputError, NumericalError};
 use crate::notes::Notes;
@@ -112,7 +113,7 @@ impl Setup {
     /// The bonds of the whole body (on a body discretised over several
     /// processes, summed over them: a collective call).
     pub fn bond_count(&self) -> usize {
-        super::system::total_bonds(&self.disc)
+        super::shares::total_bonds(&self.disc)
     }
 }
 

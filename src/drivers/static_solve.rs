@@ -3,10 +3,8 @@
 //! set (and, when the scene asks, the recovered stress).
 
 use super::setup::{Plan, Setup, Timings};
-use super::system::{
-    agreed, bond_counts, bonds_held, check_range, reactions, reports, right_hand_side, sum_shares,
-    total_bonds, Reaction, System,
-};
+use super::shares::{bond_counts, bonds_held, sum_shares, total_bonds};
+use super::system::{agreed, check_range, reactions, right_hand_side, Reaction, System};
 use super::{forward, Observer};
 use crate::assembly::dofs::DofMap;
 use crate::assembly::forces::internal_forces;
@@ -292,7 +290,7 @@ fn recovered_stress(
     use rayon::prelude::*;
     let stress: Vec<Block> = (0..disc.points.len())
         .into_par_iter()
-        .map(|i| match reports(disc, i) {
+        .map(|i| match disc.reports(i) {
             true => model.stress(disc, i, u).unwrap_or_default(),
             false => Block::default(),
         })

@@ -43,6 +43,14 @@ use crate::assembly::stiffness::Stiffness;
 /// Relative residual GMRES and CG aim at.
 pub const GMRES_TOLERANCE: f64 = 1e-12;
 
+/// Krylov iterations allowed with the two-level preconditioner (it needs
+/// 15-25 on the bodies measured, independent of their size), and with
+/// PETSc's GAMG.
+pub const ITERATIVE_BUDGET: usize = 2000;
+
+/// GMRES restart length (dhpd's GMRES and PETSc's).
+pub(crate) const GMRES_RESTART: usize = 60;
+
 /// Where the unknowns sit: what the solver knows of the body (no bond,
 /// material or model).
 #[derive(Debug, Clone, Copy)]
@@ -52,7 +60,7 @@ pub struct Layout<'a> {
     /// Spacing of every point (the aggregates reach 1.5 spacings).
     pub spacing: &'a [f64],
     /// The process of every point when the body is split over several
-    /// ([`crate::discretization::share::parts`]); `None`: one process.
+    /// (the driver's setup cuts them); `None`: one process.
     #[cfg(feature = "mpi")]
     pub part: Option<&'a [u32]>,
     /// The point and component of every free unknown, and back.

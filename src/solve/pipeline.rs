@@ -45,7 +45,9 @@ use super::lu::SparseLu;
 use super::refine::{refine, refine_extended};
 use super::route::{self, Factor, Hints, OrderingReport, Source, LU_MAX_UNKNOWNS};
 use super::two_level::TwoLevel;
-use super::{norm2, relative_residual, Layout, Matrices, GMRES_TOLERANCE};
+use super::{
+    norm2, relative_residual, Layout, Matrices, GMRES_RESTART, GMRES_TOLERANCE, ITERATIVE_BUDGET,
+};
 use crate::assembly::pattern::Pattern;
 use crate::assembly::stiffness::Stiffness;
 use crate::error::{Error, NumericalError};
@@ -64,12 +66,6 @@ const SURROGATE_BUDGET: usize = 120;
 /// GMRES iterations allowed with the factor of the symmetric part.
 const SYMMETRIC_PART_BUDGET: usize = 600;
 
-/// Krylov iterations allowed with the two-level preconditioner (it needs
-/// 15-25 on the bodies measured, independent of their size).
-pub const ITERATIVE_BUDGET: usize = 2000;
-
-/// GMRES restart length.
-pub(super) const GMRES_RESTART: usize = 60;
 
 /// Largest memory for the columns of the low-rank update (bytes), unless the
 /// factor itself is larger.

@@ -42,7 +42,7 @@ use rayon::prelude::*;
 /// every point's on one process, this process's own on several, where the
 /// bonds of other points are held to compute the forces on its own.
 fn counts(disc: &Discretization, i: usize) -> bool {
-    crate::drivers::system::reports(disc, i)
+    disc.reports(i)
 }
 
 /// What a force evaluation broke.

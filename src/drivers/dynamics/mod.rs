@@ -195,8 +195,8 @@ fn run_with(
     let probes = plan.probes.iter().map(|p| p.1).collect();
     let explicit = Explicit::new(scene, &disc, &dofs, load_forces, probes);
     let set_names: Vec<String> = dofs.sets.iter().map(|s| s.name.clone()).collect();
-    let bonds = crate::drivers::system::total_bonds(&disc);
-    let bonds_held = crate::drivers::system::bonds_held(&disc);
+    let bonds = crate::drivers::shares::total_bonds(&disc);
+    let bonds_held = crate::drivers::shares::bonds_held(&disc);
     // The setup (points, bonds, kernels, stable time step) ends here.
     let setup_seconds = |start: Instant| {
         timings.discretization + timings.neighbour_search + start.elapsed().as_secs_f64()

@@ -22,7 +22,8 @@ use super::history::{kinetic, probe_values, set_sums, wants_snapshot, Books, Rec
 use super::kernels::ForceField;
 use super::setup::{self, Constrained, Explicit, Loads};
 use super::{diverged_point, DynamicsSolution, DynamicsTimings, Outcome};
-use crate::discretization::share::{agreed, Halo, Processes};
+use crate::discretization::share::Halo;
+use crate::processes::{agreed, Processes};
 use crate::discretization::Discretization;
 use crate::drivers::{forward, Observer, Progress, Snapshot};
 use crate::error::{Error, InputError, NumericalError};
@@ -188,7 +189,7 @@ impl<'a> Verlet<'a> {
     fn bond_counts(&self) -> Option<Vec<u32>> {
         self.shared
             .as_ref()
-            .map(|_| crate::drivers::system::bond_counts(self.kernel.disc()))
+            .map(|_| crate::drivers::shares::bond_counts(self.kernel.disc()))
     }
 
     /// Every point's damage from its process (a collective call).

@@ -61,8 +61,8 @@
 //! call; destroy functions' codes, in `Drop`, cannot be returned and are
 //! ignored.
 
-use super::pipeline::{GMRES_RESTART, ITERATIVE_BUDGET};
 use super::{Layout, GMRES_TOLERANCE};
+use super::{GMRES_RESTART, ITERATIVE_BUDGET};
 use crate::assembly::dofs::PRESCRIBED;
 use crate::assembly::pattern::Pattern;
 use crate::error::{Error, NumericalError};

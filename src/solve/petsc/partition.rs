@@ -1,5 +1,5 @@
 //! How `K` is split over the processes: PETSc's numbering from the points'
-//! parts ([`crate::discretization::share::parts`], cut before any bond is
+//! parts (`Layout::part`, cut by the setup before any bond is
 //! searched; [`Numbering`]),
 //! the columns a process assembles (its own points' and its ghost points'),
 //! its rows gathered from them for PETSc ([`local_rows`]), and the asymmetry

@@ -228,11 +228,11 @@ pub fn share_path(path: Option<&Path>) -> Result<PathBuf, Error> {
 /// failed (a collective call: a process must not go on alone into PETSc's
 /// collective calls while another stops).
 pub fn on_every_process<T>(result: Result<T, Error>) -> Result<T, Error> {
-    crate::discretization::share::agreed(Some(&Processes), result)
+    crate::processes::agreed(Some(&Processes), result)
 }
 
 /// The processes of this MPI run as the discretisation sees them
-/// ([`crate::discretization::share`]): their number, this one's rank, and
+/// ([`crate::processes::Processes`]): their number, this one's rank, and
 /// the sums and minima over the processes.
 pub struct Processes;
 
@@ -244,7 +244,7 @@ impl Processes {
     }
 }
 
-impl crate::discretization::share::Processes for Processes {
+impl crate::processes::Processes for Processes {
     fn size(&self) -> usize {
         comm_query(ffi::MPI_Comm_size)
     }
