@@ -695,25 +695,30 @@ impl<M: Model> FamilyKernel<M> {
             return Breaks::default();
         };
         criterion.ratios(&self.model, &self.disc, u, self.linear, &mut self.ratios);
-        let mut owners = Vec::new();
-        let mut breaks = Breaks::default();
-        let counted: Vec<bool> = (0..self.disc.points.len())
-            .map(|i| counts(&self.disc, i))
-            .collect();
+        // The owners whose bonds broke, with how many.
+        let mut broken: Vec<(usize, usize)> = Vec::new();
         let bonds = &mut self.disc.bonds;
-        for (i, &counted) in counted.iter().enumerate() {
-            let mut any = false;
+        for i in 0..bonds.offsets.len() - 1 {
+            let mut count = 0;
             for b in bonds.offsets[i]..bonds.offsets[i + 1] {
                 if bonds.intact[b] && self.ratios[b] >= 1.0 {
                     bonds.intact[b] = false;
-                    breaks.bonds += usize::from(counted);
-                    any = true;
+                    count += 1;
                 }
             }
-            if any {
-                owners.push(i);
+            if count > 0 {
+                broken.push((i, count));
             }
         }
+        let mut breaks = Breaks {
+            bonds: broken
+                .iter()
+                .filter(|&&(i, _)| counts(&self.disc, i))
+                .map(|&(_, count)| count)
+                .sum(),
+            energy: 0.0,
+        };
+        let owners: Vec<usize> = broken.iter().map(|&(i, _)| i).collect();
         if !owners.is_empty() {
             for i in self.model.refresh_owners(&self.disc, &owners) {
                 let counted = counts(&self.disc, i);
