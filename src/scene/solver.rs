@@ -205,6 +205,27 @@ mod tests {
     }
 
     #[test]
+    fn an_explicit_run_takes_no_petsc_solver() {
+        let spec = SolverSpec {
+            method: Some(super::SolverMethod::Petsc),
+            petsc_solver: Some(PetscSolver::Gamg),
+            ..Default::default()
+        };
+        let verlet = RunKind {
+            dynamics: Some(DynamicsMethod::Verlet),
+            ..Default::default()
+        };
+        let e = validate(&spec, ModelKind::BondBased, verlet).unwrap_err();
+        if cfg!(feature = "mpi") {
+            assert_eq!(e.field, "solver.petsc_solver");
+            assert!(e.message.contains("solves no linear system"));
+        } else {
+            // Without the feature the route itself is refused first.
+            assert_eq!(e.field, "solver.method");
+        }
+    }
+
+    #[test]
     fn petsc_is_refused_where_it_cannot_run() {
         let dynamic = check_petsc(Some(DynamicsMethod::Relaxation)).unwrap_err();
         assert_eq!(dynamic.field, "solver.method");
