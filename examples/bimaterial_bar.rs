@@ -27,6 +27,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
                 dx_right: dr,
                 constant_horizon: constant,
                 strip: false,
+                surface_correction: true,
             };
             let t = std::time::Instant::now();
             let s = case.solve()?;
@@ -81,6 +82,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             dx_right: 0.005 / r,
             constant_horizon: false,
             strip: true,
+            surface_correction: true,
         };
         let t = std::time::Instant::now();
         let s = case.solve()?;

@@ -102,6 +102,7 @@ fn stiffness_contrast_strip_2d() {
         dx_right: 0.005,
         constant_horizon: false,
         strip: true,
+        surface_correction: true,
     };
     let (a, b) = (case.support_left(), case.support_right());
     let mut errors = Vec::new();

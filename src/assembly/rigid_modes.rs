@@ -10,9 +10,9 @@
 //! through a point), before any factorisation.
 
 use super::dofs::{DofMap, PRESCRIBED};
-use crate::processes::Processes;
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
+use crate::processes::Processes;
 
 /// Errors if a connected body can move rigidly without changing any
 /// prescribed value. A body discretised over `processes` (each holding some

@@ -270,7 +270,10 @@ mod tests {
     #[test]
     fn three_dimensions_at_the_measured_horizon_factor_only() {
         let three = |rule, m| bond_based_factors(Dimension::Three, rule, m);
-        assert_eq!(three(VolumeCorrection::Overlap, 3.015).unwrap().dissipation, 1.0968);
+        assert_eq!(
+            three(VolumeCorrection::Overlap, 3.015).unwrap().dissipation,
+            1.0968
+        );
         for (rule, m) in [
             (VolumeCorrection::Overlap, 3.5),
             (VolumeCorrection::None, 3.015),

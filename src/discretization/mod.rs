@@ -28,10 +28,9 @@ use crate::geometry::grid::{self, RawPoint, Source};
 use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::point_file;
 use crate::notes::Notes;
-use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
-use crate::vector::{norm, sub};
-use groups::PointGroup;
 use crate::processes::{agreed, Processes};
+use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
+use groups::PointGroup;
 use share::{Distribution, Share};
 use std::ops::Range;
 
@@ -235,12 +234,7 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
         raw.extend(mesh.points);
         mesh_groups.extend(mesh.groups);
     }
-    raw.retain(|p| {
-        !scene
-            .holes
-            .iter()
-            .any(|h| norm(&sub(&p.x, &h.center)) < h.radius)
-    });
+    raw.retain(|p| !scene.holes.iter().any(|h| h.contains(&p.x)));
     if raw.is_empty() {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }

@@ -103,7 +103,9 @@ fn estimated_bonds(points: &Points, d: usize, pv: PartialVolume, searched: Optio
 
 /// The number of points whose families are searched.
 fn searched_count(n: usize, searched: Option<&[bool]>) -> usize {
-    searched.map_or(n, |s| s.iter().filter(|&&f| f).count()).max(1)
+    searched
+        .map_or(n, |s| s.iter().filter(|&&f| f).count())
+        .max(1)
 }
 
 /// The running count of bonds found against the memory limit.

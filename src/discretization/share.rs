@@ -212,8 +212,9 @@ fn row_lengths<const K: usize>(points: &Points, free: &[usize]) -> Result<Vec<f6
         .iter()
         .map(|x| std::array::from_fn(|a| x[a]))
         .collect();
-    let tree: ImmutableKdTree<f64, K> = ImmutableKdTree::new_from_slice(&coords)
-        .map_err(|e| NumericalError::Solver(format!("cannot build the points' search tree: {e:?}")))?;
+    let tree: ImmutableKdTree<f64, K> = ImmutableKdTree::new_from_slice(&coords).map_err(|e| {
+        NumericalError::Solver(format!("cannot build the points' search tree: {e:?}"))
+    })?;
     Ok(coords
         .par_iter()
         .enumerate()
@@ -283,11 +284,7 @@ fn bisect(
 }
 
 /// Whether each point lies within `radius` of a point that `own` flags.
-fn within<const K: usize>(
-    points: &Points,
-    own: &[bool],
-    radius: f64,
-) -> Result<Vec<bool>, Error> {
+fn within<const K: usize>(points: &Points, own: &[bool], radius: f64) -> Result<Vec<bool>, Error> {
     let coords = |i: usize| -> [f64; K] { std::array::from_fn(|a| points.x[i][a]) };
     let mine: Vec<[f64; K]> = (0..points.len()).filter(|&i| own[i]).map(coords).collect();
     if mine.is_empty() {

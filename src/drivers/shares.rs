@@ -53,9 +53,14 @@ pub fn bond_counts(disc: &Discretization) -> Vec<u32> {
         return counts;
     }
     let mut mine: Vec<f64> = (0..n)
-        .map(|i| if disc.reports(i) { f64::from(counts[i]) } else { 0.0 })
+        .map(|i| {
+            if disc.reports(i) {
+                f64::from(counts[i])
+            } else {
+                0.0
+            }
+        })
         .collect();
     sum_shares(disc, &mut mine);
     mine.iter().map(|&c| c as u32).collect()
 }
-

@@ -163,7 +163,11 @@ pub fn run(
     let mut notes = Notes::default();
     note_near_incompressible(scene, &mut notes);
     forward(&mut notes, observer);
-    let model = agreed(&scene.solver, AnyModel::new(scene, &setup.disc).map_err(Error::from))?;
+    let model = agreed(
+        &scene.solver,
+        AnyModel::new(scene, &setup.disc).map_err(Error::from),
+    )?;
+    model.warnings().into_iter().for_each(|w| notes.push(w));
     let result = solve_with(&model, scene, setup, &mut notes);
     forward(&mut notes, observer);
     result

@@ -12,10 +12,14 @@
 //! Linearised about the reference configuration, `s ≈ e·η/|ξ|` and `n ≈ e`, so each
 //! bond contributes `k = C_i V_i V_j ν_ij / |ξ| · e ⊗ e` with `+k` on blocks
 //! (i,i), (j,j) and `−k` on (i,j), (j,i): `K` is symmetric.
+//!
+//! With the surface correction (`discretization.surface_correction = "energy"`,
+//! the default; [`super::surface`]) every weight is multiplied by its owner's
+//! positive factor `g_ij`, 1 where the family is full: `w_ij = C_i V_i V_j ν_ij g_ij`.
 
 use super::{Block, Column, Coupling, Model};
 use crate::discretization::Discretization;
-use crate::scene::{Dimension, Material, Scene};
+use crate::scene::{Dimension, Material, Scene, SurfaceCorrection, VolumeCorrection};
 use crate::vector::{dot, norm, sub};
 
 /// The bond-based model with each point's micromodulus.
@@ -23,6 +27,10 @@ use crate::vector::{dot, norm, sub};
 pub struct BondBased {
     /// `C_i` of each owner.
     pub micromodulus: Vec<f64>,
+    /// The surface factor `g_ij` of each bond ([`super::surface`]); empty: 1.
+    pub surface_factor: Vec<f64>,
+    /// Owners whose moments the surface correction could not match (kept at 1).
+    pub unmatched_owners: usize,
 }
 
 impl BondBased {
@@ -37,7 +45,24 @@ impl BondBased {
         let micromodulus = (0..p.len())
             .map(|i| materials[p.material[i] as usize].micromodulus(dim, p.horizon[i], thickness))
             .collect();
-        Self { micromodulus }
+        Self {
+            micromodulus,
+            surface_factor: Vec::new(),
+            unmatched_owners: 0,
+        }
+    }
+
+    /// The same model with the surface correction of [`super::surface`].
+    pub fn with_surface_correction(
+        mut self,
+        disc: &Discretization,
+        rule: VolumeCorrection,
+        thickness: f64,
+    ) -> Self {
+        let (factors, unmatched) = super::surface::factors(disc, rule, thickness);
+        self.surface_factor = factors;
+        self.unmatched_owners = unmatched;
+        self
     }
 
     /// The weight `w_ij = C_i V_i V_j ν_ij` of bond `b` owned by `i` (module docs).
@@ -45,17 +70,29 @@ impl BondBased {
     pub fn bond_weight(&self, disc: &Discretization, i: usize, b: usize) -> f64 {
         let p = &disc.points;
         let j = disc.bonds.neighbour[b] as usize;
-        self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b]
+        let w = self.micromodulus[i] * p.volume[i] * p.volume[j] * disc.bonds.volume_factor[b];
+        match self.surface_factor.get(b) {
+            Some(g) => w * g,
+            None => w,
+        }
     }
 
     /// The model of `scene` on `disc`.
     pub fn of(scene: &Scene, disc: &Discretization) -> Self {
-        Self::new(
+        let model = Self::new(
             disc,
             scene.model.dimension,
             &scene.materials,
             scene.model.thickness,
-        )
+        );
+        match scene.discretization.surface_correction {
+            SurfaceCorrection::Energy => model.with_surface_correction(
+                disc,
+                scene.discretization.volume_correction,
+                scene.model.thickness,
+            ),
+            SurfaceCorrection::None => model,
+        }
     }
 
     /// Linearised stiffness block `k` of bond `b` owned by `i`.

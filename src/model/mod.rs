@@ -10,6 +10,7 @@
 
 pub mod bond_based;
 pub mod shear;
+pub mod surface;
 
 use crate::discretization::Discretization;
 use crate::error::NumericalError;
@@ -123,6 +124,23 @@ impl AnyModel {
             ModelKind::BondBased => AnyModel::BondBased(BondBased::of(scene, disc)),
             ModelKind::Shear => AnyModel::Shear(Shear::of(scene, disc)?),
         })
+    }
+}
+
+impl AnyModel {
+    /// What the user should know about the model's set-up: owners the surface
+    /// correction could not match (their families cannot reach a full one's
+    /// moments, e.g. a body one point thick), left uncorrected.
+    pub fn warnings(&self) -> Vec<String> {
+        match self {
+            AnyModel::BondBased(m) if m.unmatched_owners > 0 => vec![format!(
+                "warning: the surface correction left {} point(s) uncorrected: their bonds \
+                 cannot reach the stiffness of a full family (a body thinner than about two \
+                 spacings?)",
+                m.unmatched_owners
+            )],
+            _ => Vec::new(),
+        }
     }
 }
 

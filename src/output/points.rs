@@ -133,7 +133,6 @@ pub(crate) fn write_points(
     Ok(())
 }
 
-
 /// The file of piece `piece` of `points.pvtu`.
 fn piece_name(piece: usize) -> String {
     format!("points_{piece}.vtu")

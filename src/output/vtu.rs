@@ -147,8 +147,16 @@ fn point_arrays(s: &PointData, range: Range<usize>) -> Vec<Array> {
         let flat = stress[r.clone()].iter().flatten().flatten().copied();
         arrays.push(array("stress", 9, Values::F64(flat.collect())));
     }
-    arrays.push(array("volume", 1, Values::F64(p.volume[r.clone()].to_vec())));
-    arrays.push(array("horizon", 1, Values::F64(p.horizon[r.clone()].to_vec())));
+    arrays.push(array(
+        "volume",
+        1,
+        Values::F64(p.volume[r.clone()].to_vec()),
+    ));
+    arrays.push(array(
+        "horizon",
+        1,
+        Values::F64(p.horizon[r.clone()].to_vec()),
+    ));
     let material = p.material[r.clone()].iter().map(|&m| m as i32);
     arrays.push(array("material", 1, Values::I32(material.collect())));
     let counts = if range.is_empty() {

@@ -71,6 +71,20 @@ pub struct Hole {
     pub center: [f64; 3],
     /// Radius.
     pub radius: f64,
+    /// Unit axis of a 3D through hole (a cylinder); `None`: a disc (2D) or ball (3D).
+    pub axis: Option<[f64; 3]>,
+}
+
+impl Hole {
+    /// Whether `x` lies strictly inside the hole.
+    pub fn contains(&self, x: &[f64; 3]) -> bool {
+        let r: [f64; 3] = std::array::from_fn(|a| x[a] - self.center[a]);
+        let along = self
+            .axis
+            .map_or(0.0, |n| (0..3).map(|a| r[a] * n[a]).sum::<f64>());
+        let radial2 = (0..3).map(|a| r[a] * r[a]).sum::<f64>() - along * along;
+        radial2 < self.radius * self.radius
+    }
 }
 
 /// A pre-crack no bond may cross.
@@ -131,9 +145,30 @@ pub(super) fn validate(
             return Err(InputError::new(f, "holes need 2D or 3D"));
         }
         positive(&format!("{f}.radius"), h.radius)?;
+        let axis = match (&h.axis, d) {
+            (None, _) => None,
+            (Some(_), 2) => {
+                return Err(InputError::new(
+                    format!("{f}.axis"),
+                    "a 2D hole is a disc; axis is for 3D through holes",
+                ))
+            }
+            (Some(a), _) => {
+                let a = coords(&format!("{f}.axis"), a, d)?;
+                let len = (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt();
+                if !(len > 0.0 && len.is_finite()) {
+                    return Err(InputError::new(
+                        format!("{f}.axis"),
+                        "must be a non-zero direction, e.g. [0, 0, 1]",
+                    ));
+                }
+                Some(a.map(|v| v / len))
+            }
+        };
         holes.push(Hole {
             center: coords(&format!("{f}.center"), &h.center, d)?,
             radius: h.radius,
+            axis,
         });
     }
     let cracks = spec

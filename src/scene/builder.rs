@@ -62,6 +62,23 @@ impl SceneSpec {
         self.holes.push(HoleSpec {
             center: center.into(),
             radius,
+            axis: None,
+        });
+        self
+    }
+
+    /// Adds a 3D through hole: a cylinder of `radius` about the line through
+    /// `center` along `axis`.
+    pub fn with_through_hole(
+        mut self,
+        center: impl Into<Vec<f64>>,
+        axis: impl Into<Vec<f64>>,
+        radius: f64,
+    ) -> Self {
+        self.holes.push(HoleSpec {
+            center: center.into(),
+            radius,
+            axis: Some(axis.into()),
         });
         self
     }
@@ -126,6 +143,7 @@ impl ModelSpec {
             area: None,
             horizons: HorizonMode::default(),
             dilatation: None,
+            formulation: None,
             allow_any_poisson: false,
         }
     }

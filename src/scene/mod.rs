@@ -141,6 +141,7 @@ impl Scene {
             discretization: DiscretizationSettings {
                 volume_correction: spec.discretization.volume_correction,
                 isolated_points: spec.discretization.isolated_points,
+                surface_correction: spec.discretization.surface_correction.unwrap_or_default(),
             },
             materials,
             regions: bodies.regions,

@@ -7,7 +7,7 @@ use super::material::{self, Material};
 use super::output::OutputSettings;
 use super::spec::{
     Dilatation, Dimension, HorizonMode, IsolatedPolicy, ModelKind, ModelSpec, SceneSpec,
-    VolumeCorrection,
+    ShearFormulation, SurfaceCorrection, VolumeCorrection,
 };
 use crate::error::InputError;
 
@@ -25,6 +25,8 @@ pub struct Model {
     /// Shear model: how an owner's dilatation is computed (weighted unless
     /// `model.dilatation = "gradient"`).
     pub dilatation: Dilatation,
+    /// Shear model: the energy-derived force (default) or the paper's.
+    pub formulation: ShearFormulation,
 }
 
 impl Model {
@@ -37,6 +39,11 @@ impl Model {
     pub fn gradient_dilatation(&self) -> bool {
         self.dilatation == Dilatation::Gradient
     }
+
+    /// Whether the shear model uses its energy-derived force (symmetric tangent).
+    pub fn energy_shear(&self) -> bool {
+        self.kind == ModelKind::Shear && self.formulation == ShearFormulation::Energy
+    }
 }
 
 /// The validated `[discretization]` (horizon factors are resolved into each
@@ -47,6 +54,8 @@ pub struct DiscretizationSettings {
     pub volume_correction: VolumeCorrection,
     /// What to do with points left without any bond.
     pub isolated_points: IsolatedPolicy,
+    /// Bond-based model: the surface correction of its bonds.
+    pub surface_correction: SurfaceCorrection,
 }
 
 /// `[model]`, up to the checks that need the other sections ([`late_checks`]).
@@ -57,6 +66,7 @@ pub(super) fn validate(m: &ModelSpec) -> Result<Model, InputError> {
         thickness: thickness(m)?,
         horizons: m.horizons,
         dilatation: m.dilatation.unwrap_or_default(),
+        formulation: m.formulation.unwrap_or_default(),
     })
 }
 
@@ -103,6 +113,29 @@ pub(super) fn late_checks(
         return Err(InputError::new(
             "model.dilatation",
             "applies to the shear model only (model.kind = \"shear\")",
+        ));
+    }
+    if spec.model.formulation.is_some() && model.kind != ModelKind::Shear {
+        return Err(InputError::new(
+            "model.formulation",
+            "applies to the shear model only (model.kind = \"shear\"); the bond-based model's \
+             surfaces are chosen by discretization.surface_correction",
+        ));
+    }
+    if spec.model.dilatation.is_some() && model.energy_shear() {
+        return Err(InputError::new(
+            "model.dilatation",
+            "applies to the paper's force only (model.formulation = \"paper\"); the energy \
+             formulation's dilatation is the trace of its displacement gradient, exact at \
+             free surfaces",
+        ));
+    }
+    if spec.discretization.surface_correction.is_some() && model.kind == ModelKind::Shear {
+        return Err(InputError::new(
+            "discretization.surface_correction",
+            "applies to the bond-based model only; the shear model's surfaces are chosen by \
+             model.formulation (\"energy\", the default, is exact under homogeneous \
+             deformation at free surfaces; \"paper\" is 001's force)",
         ));
     }
     if model.kind == ModelKind::Shear && model.d() == 1 {

@@ -8,8 +8,8 @@
 use super::fields::positive;
 use super::spec::{ModelKind, SolverSpec};
 pub use super::spec::{Ordering, PetscSolver, Precision, SolverMethod};
-use crate::error::InputError;
 use super::DynamicsMethod;
+use crate::error::InputError;
 
 /// Bytes per GiB.
 const GIB: f64 = 1073741824.0;

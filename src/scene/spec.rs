@@ -86,6 +86,10 @@ pub struct ModelSpec {
     /// free surfaces too; it does not remove the stiffening of the force along
     /// a free surface: validation/bimaterial_bar/README.md).
     pub dilatation: Option<Dilatation>,
+    /// Shear model only: `"energy"` (default: the force derived from a strain
+    /// energy, equal to the paper's where the family is full, symmetric
+    /// tangent) or `"paper"` (001 Eq. 27-28 as published).
+    pub formulation: Option<ShearFormulation>,
     /// Bond-based only: accept a Poisson ratio the model cannot represent
     /// (the micromodulus then matches the bulk modulus). Default false.
     #[serde(default)]
@@ -101,6 +105,18 @@ pub enum ModelKind {
     BondBased,
     /// Shear-deformation DH-PD of Ren, Zhuang & Rabczuk (formulation Sec. 4): any ν, 2D or 3D.
     Shear,
+}
+
+/// Which force law the shear model uses (`src/model/shear.rs`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShearFormulation {
+    /// Derived from a strain energy: Hooke's law of the family's displacement
+    /// gradient plus the paper's penalty on the non-affine part.
+    Energy,
+    /// 001 Eq. 27-28 as published (not symmetric).
+    #[default]
+    Paper,
 }
 
 /// How the shear model computes an owner's dilatation θ.
@@ -183,6 +199,18 @@ pub enum VolumeCorrection {
     None,
 }
 
+/// Surface correction of the bond-based model (`src/model/surface.rs`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SurfaceCorrection {
+    /// Each owner's bonds scaled so that its stiffness tensor under homogeneous
+    /// strain equals that of a full family.
+    Energy,
+    /// No correction: the bonds of a family cut by a surface keep their stiffness.
+    #[default]
+    None,
+}
+
 /// `[discretization]`
 #[derive(Debug, Clone, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -197,6 +225,8 @@ pub struct DiscretizationSpec {
     /// `"error"` (default) or `"remove"`.
     #[serde(default)]
     pub isolated_points: IsolatedPolicy,
+    /// Bond-based model: `"energy"` (default) or `"none"`.
+    pub surface_correction: Option<SurfaceCorrection>,
 }
 
 impl Default for DiscretizationSpec {
@@ -205,6 +235,7 @@ impl Default for DiscretizationSpec {
             horizon_factor: default_horizon_factor(),
             volume_correction: VolumeCorrection::Overlap,
             isolated_points: IsolatedPolicy::Error,
+            surface_correction: None,
         }
     }
 }
@@ -303,6 +334,9 @@ pub struct HoleSpec {
     pub center: Vec<f64>,
     /// Radius in m (> 0).
     pub radius: f64,
+    /// 3D only: the direction of a through hole (a cylinder of `radius` about
+    /// the line through `center`); left out, a 3D hole is a sphere.
+    pub axis: Option<Vec<f64>>,
 }
 
 /// `[[cracks]]`: a segment `from`-`to` (2D) or a parallelogram

@@ -32,7 +32,17 @@ pub fn gmres(
     restart: usize,
     max_iterations: usize,
 ) -> GmresReport {
-    gmres_with_checkpoint(apply, precondition, b, x, tol, restart, max_iterations, None).0
+    gmres_with_checkpoint(
+        apply,
+        precondition,
+        b,
+        x,
+        tol,
+        restart,
+        max_iterations,
+        None,
+    )
+    .0
 }
 
 /// [`gmres`] that also returns the first iterate whose residual (as the

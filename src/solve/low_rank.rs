@@ -192,7 +192,8 @@ mod tests {
         }
         let pattern = SymbolicSparseColMatRef::new_checked(n, n, &col_ptr, None, &row_idx);
         let mut chol = Cholesky::analyse(pattern, None).unwrap();
-        chol.factorize(SparseColMatRef::new(pattern, &values)).unwrap();
+        chol.factorize(SparseColMatRef::new(pattern, &values))
+            .unwrap();
         let llt = chol.double_factor().unwrap();
         // Spring s between unknowns s−1 and s: g = e_{s−1} − e_s.
         let term = |s: usize, k: f64| Term {

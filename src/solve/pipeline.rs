@@ -66,7 +66,6 @@ const SURROGATE_BUDGET: usize = 120;
 /// GMRES iterations allowed with the factor of the symmetric part.
 const SYMMETRIC_PART_BUDGET: usize = 600;
 
-
 /// Largest memory for the columns of the low-rank update (bytes), unless the
 /// factor itself is larger.
 const UPDATE_MEMORY: usize = 256 << 20;
@@ -839,7 +838,10 @@ impl Pipeline {
             return self.resolve_petsc(layout, m, rhs, x0, notes);
         }
         let cap = self.refactor_threshold();
-        let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
+        let tolerance = self
+            .resolve_tolerance
+            .unwrap_or(0.0)
+            .max(self.full_tolerance());
         let t = Instant::now();
         let mut x = x0.to_vec();
         let (report, earlier) = self.krylov(m.k, rhs, &mut x, tolerance, cap);
@@ -887,7 +889,10 @@ impl Pipeline {
         notes: &mut Notes,
     ) -> Result<Solved, Error> {
         let cap = self.agreed_refactor_threshold();
-        let tolerance = self.resolve_tolerance.unwrap_or(0.0).max(self.full_tolerance());
+        let tolerance = self
+            .resolve_tolerance
+            .unwrap_or(0.0)
+            .max(self.full_tolerance());
         let Factor::Petsc(Some(solver)) = &mut self.factor else {
             unreachable!("set up by factorize")
         };
@@ -898,8 +903,7 @@ impl Pipeline {
         let checkpoint = Some(CHECKPOINT_FACTOR * tolerance);
         let run = solver.solve_from(rhs, &mut x, tolerance, cap, checkpoint)?;
         if run.iterations > 0 {
-            self.costs.iteration_seconds =
-                solving.elapsed().as_secs_f64() / run.iterations as f64;
+            self.costs.iteration_seconds = solving.elapsed().as_secs_f64() / run.iterations as f64;
         }
         let elapsed = t.elapsed().as_secs_f64();
         if !run.converged {
@@ -1018,7 +1022,13 @@ impl Pipeline {
         let before = relative_residual(&self.product(m.k, x), rhs);
         let tolerance = target.unwrap_or(before / CHECKPOINT_FACTOR);
         let mut improved = x.to_vec();
-        let (run, _) = self.krylov(m.k, rhs, &mut improved, tolerance, self.refactor_threshold());
+        let (run, _) = self.krylov(
+            m.k,
+            rhs,
+            &mut improved,
+            tolerance,
+            self.refactor_threshold(),
+        );
         let report = run.krylov;
         let progress = report.relative_residual < 0.5 * before;
         if !(progress && improved.iter().all(|v| v.is_finite())) {

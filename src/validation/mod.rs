@@ -30,6 +30,9 @@ pub struct Bimaterial {
     pub constant_horizon: bool,
     /// 2D strip (1 m × 0.1 m, plane stress, ν = 1/3) instead of a 1D bar.
     pub strip: bool,
+    /// The bond-based surface correction (the default); `false` is the
+    /// papers' model (`discretization.surface_correction = "none"`).
+    pub surface_correction: bool,
 }
 
 impl Bimaterial {
@@ -94,7 +97,7 @@ impl Bimaterial {
         };
         format!(
             r#"
-            name = "bimaterial"
+            name = "bimaterial"{correction}
             [model]
             dimension = "{model}"
             horizons = "{horizons}"
@@ -126,6 +129,11 @@ impl Bimaterial {
             lmax = pad_hi(left_max),
             rmin = pad(right_min),
             u = BAR_DISPLACEMENT,
+            correction = if self.surface_correction {
+                ""
+            } else {
+                "\n            [discretization]\n            surface_correction = \"none\""
+            },
         )
     }
 

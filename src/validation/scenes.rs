@@ -32,6 +32,7 @@ pub fn catalogue() -> Vec<SceneFile> {
                 dx_right: dr,
                 constant_horizon: constant,
                 strip: false,
+                surface_correction: true,
             };
             let horizons = if constant { "constant" } else { "dual" };
             add(
@@ -51,6 +52,7 @@ pub fn catalogue() -> Vec<SceneFile> {
             dx_right: 0.005 / r,
             constant_horizon: false,
             strip: true,
+            surface_correction: true,
         };
         add(
             format!("{bar}/scenes/strip2d_r{r}.toml"),

@@ -804,7 +804,6 @@ impl TangentKernel {
             x,
         })
     }
-
 }
 
 impl ForceField for TangentKernel {

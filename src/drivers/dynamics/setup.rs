@@ -131,6 +131,7 @@ pub(super) fn kernel(
             criterion
         });
     let model = AnyModel::new(scene, &disc)?;
+    model.warnings().into_iter().for_each(|w| notes.push(w));
     let limit = scene.solver.memory_limit_bytes;
     Ok(match (model, dy.kernel) {
         (AnyModel::BondBased(model), ForceKernel::Nonlinear) => {

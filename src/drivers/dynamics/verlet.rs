@@ -23,11 +23,11 @@ use super::kernels::ForceField;
 use super::setup::{self, Constrained, Explicit, Loads};
 use super::{diverged_point, DynamicsSolution, DynamicsTimings, Outcome};
 use crate::discretization::share::Halo;
-use crate::processes::{agreed, Processes};
 use crate::discretization::Discretization;
 use crate::drivers::{forward, Observer, Progress, Snapshot};
 use crate::error::{Error, InputError, NumericalError};
 use crate::notes::Notes;
+use crate::processes::{agreed, Processes};
 use crate::scene::{Dynamics, Motion, RunLength, Scene};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -116,7 +116,9 @@ impl<'a> Verlet<'a> {
                     *free = [false; 3];
                 }
             }
-            explicit.constrained.retain(|c| shared.own[c.point as usize]);
+            explicit
+                .constrained
+                .retain(|c| shared.own[c.point as usize]);
         }
         let own = |i: usize| shared.as_ref().is_none_or(|s| s.own[i]);
         let stable_dt = stable_time_step(scene, &disc, &mass, dy, &own, processes)?;
@@ -249,7 +251,9 @@ impl<'a> Verlet<'a> {
         own: &dyn Fn(usize) -> bool,
     ) -> Result<(), Error> {
         let kinetic = |i: usize| 0.5 * self.mass[i] * crate::vector::dot(&v[i], &v[i]);
-        let moving = (0..v.len()).filter(|&i| own(i)).find(|&i| !kinetic(i).is_finite());
+        let moving = (0..v.len())
+            .filter(|&i| own(i))
+            .find(|&i| !kinetic(i).is_finite());
         let total: f64 = (0..v.len()).filter(|&i| own(i)).map(kinetic).sum();
         let moving =
             moving.or_else(|| (!total.is_finite()).then(|| diverged_point(u, v, &self.mass)));

@@ -256,6 +256,7 @@ pub fn run(
 ) -> Result<QuasiStaticSolution, Error> {
     let model = AnyModel::new(scene, &setup.disc)?;
     let mut notes = Notes::default();
+    model.warnings().into_iter().for_each(|w| notes.push(w));
     let result = run_with(model, scene, setup, observer, &mut notes);
     forward(&mut notes, observer);
     result
@@ -532,4 +533,3 @@ impl Run<'_> {
         .into())
     }
 }
-

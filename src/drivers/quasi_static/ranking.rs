@@ -152,7 +152,6 @@ impl Run<'_> {
             .ratios(&self.model, &self.disc, &u, true, &mut ratios);
         ratios
     }
-
 }
 
 /// Whether every bond is surely critical or surely not (module docs), with
