@@ -9,7 +9,7 @@
 //! cargo run --release --example bimaterial_bar
 //! ```
 
-use dhpd::reference::{ErrorStats, FemReference, BIMATERIAL_STRIP_FEM};
+use dhpd::reference::{ErrorStats, FemReference};
 use dhpd::validation::{Bimaterial, BAR_DISPLACEMENT};
 use std::fmt::Write;
 
@@ -71,12 +71,10 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
     }
 
-    let reference = FemReference::from_json(BIMATERIAL_STRIP_FEM)?;
-    let fem_reaction = reference.reaction_x.unwrap_or(f64::NAN);
-    println!("\n## 2D strip (errors in % of the applied displacement; reaction against FEM {fem_reaction:.6e} N)\n");
+    println!("\n## 2D strip (errors in % of the applied displacement; reaction against the FEM of the same supports)\n");
     println!("| refinement | spacing left/right (m) | points | centre line max | centre line RMS | all points max | all RMS | reaction | reaction error | neighbours | assembly | numeric Cholesky | total (s) |");
     println!("|---|---|---|---|---|---|---|---|---|---|---|---|---|");
-    for r in [1.0, 3.0, 5.0] {
+    for r in [1.0, 3.0] {
         let case = Bimaterial {
             dx_left: 0.01 / r,
             dx_right: 0.005 / r,
@@ -84,6 +82,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             strip: true,
             surface_correction: true,
         };
+        let reference = FemReference::from_json(&case.strip_reference()?)?;
+        let fem_reaction = reference.reaction_x.unwrap_or(f64::NAN);
         let t = std::time::Instant::now();
         let s = case.solve()?;
         let secs = t.elapsed().as_secs_f64();

@@ -94,9 +94,11 @@ impl FemReference {
     }
 }
 
-/// The 2D bimaterial strip's FEM reference, embedded for the default run.
+/// The 2D bimaterial strip's FEM reference, embedded for the default run:
+/// clamped at x = 0.03, the face of the held cells (the surface correction's
+/// grip, `model::surface`), u_x prescribed at x = 0.9725.
 pub const BIMATERIAL_STRIP_FEM: &str =
-    include_str!("../validation/bimaterial_bar/fem/reference.json");
+    include_str!("../validation/bimaterial_bar/fem/reference_clamp_face.json");
 
 /// Closed-form displacement of a bar of two materials in series (uniaxial, 1D):
 /// fixed at `a`, displaced by `u_end` at `b`, interface at `x_i`, moduli `e1`

@@ -242,6 +242,30 @@ macro_rules! contract_tests {
     };
 }
 
+/// The bond-based model with the scene's surface correction.
+fn bond_based_corrected(scene: &Scene, disc: &Discretization) -> BondBased {
+    BondBased::new(
+        disc,
+        scene.model.dimension,
+        &scene.materials,
+        scene.model.thickness,
+    )
+    .with_surface_correction(
+        disc,
+        scene.discretization.volume_correction,
+        scene.model.thickness,
+        !scene.cracks.is_empty(),
+    )
+}
+
+contract_tests!(
+    bond_based_surface_corrected,
+    bond_based_corrected,
+    "",
+    symmetric = true,
+    settings = ["1d", "plane_stress", "plane_strain", "3d"]
+);
+
 contract_tests!(
     bond_based_model,
     bond_based,
@@ -250,20 +274,15 @@ contract_tests!(
     settings = ["1d", "plane_stress", "plane_strain", "3d"]
 );
 
+/// The shear model the scene names (its formulation and dilatation).
 fn shear(scene: &Scene, disc: &Discretization) -> Shear {
-    Shear::new(
-        disc,
-        scene.model.dimension,
-        &scene.materials,
-        scene.model.gradient_dilatation(),
-    )
-    .expect("shape tensors are regular")
+    Shear::of(scene, disc).expect("shape tensors are regular")
 }
 
 contract_tests!(
     shear_model,
     shear,
-    "kind = \"shear\"",
+    "kind = \"shear\"\nformulation = \"paper\"",
     symmetric = false,
     settings = ["plane_stress", "plane_strain", "3d"]
 );
@@ -271,7 +290,15 @@ contract_tests!(
 contract_tests!(
     shear_model_gradient_dilatation,
     shear,
-    "kind = \"shear\"\ndilatation = \"gradient\"",
+    "kind = \"shear\"\nformulation = \"paper\"\ndilatation = \"gradient\"",
     symmetric = false,
+    settings = ["plane_stress", "plane_strain", "3d"]
+);
+
+contract_tests!(
+    shear_model_energy,
+    shear,
+    "kind = \"shear\"\nformulation = \"energy\"",
+    symmetric = true,
     settings = ["plane_stress", "plane_strain", "3d"]
 );

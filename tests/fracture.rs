@@ -239,9 +239,33 @@ fn stop_after_peak_ends_a_running_step() {
 /// iterations for a rank-k change.
 #[test]
 fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
-    for model_kind in ["bond_based", "shear"] {
-        let case = Sent::new(model_kind, 20, 3.015);
-        let scene = case.scene();
+    for model_kind in ["bond_based", "shear", "shear_paper"] {
+        let case = Sent::new(
+            if model_kind == "bond_based" {
+                "bond_based"
+            } else {
+                "shear"
+            },
+            20,
+            3.015,
+        );
+        // The paper's shear force (GMRES with the bond-based surrogate) and the
+        // energy formulation (Cholesky; its re-solve iterates with the old factor).
+        let text = if model_kind == "shear_paper" {
+            case.toml().replace(
+                "kind = \"shear\"",
+                "kind = \"shear\"\nformulation = \"paper\"",
+            )
+        } else {
+            case.toml()
+        };
+        assert!(model_kind != "shear_paper" || text.contains("formulation = \"paper\""));
+        let scene = Scene::try_from_spec(
+            dhpd::scene::parse_spec(&text, false).unwrap(),
+            std::path::Path::new("."),
+            "sent",
+        )
+        .unwrap();
         let prepared = static_solve::prepare(&scene).unwrap();
         let (mut disc, dofs, f_ext) = (prepared.disc, prepared.dofs, prepared.f_ext);
         let surrogate = BondBased::new(
@@ -350,8 +374,7 @@ fn a_resolve_with_the_old_factor_equals_a_fresh_solve() {
             assert_eq!(reused.report.route, Route::Reuse);
             (fresh.x, reused.x, reused.report.iterations)
         } else {
-            let mut model =
-                Shear::new(&disc, scene.model.dimension, &scene.materials, false).unwrap();
+            let mut model = Shear::of(&scene, &disc).unwrap();
             let mut pipeline = analyse(&disc, model.coupling(), &mut notes);
             let mut k = Stiffness::assemble(&model, &disc, &dofs, pipeline.pattern());
             let b = right_hand_side(&model, &disc, &dofs, &f_ext, 1.0);

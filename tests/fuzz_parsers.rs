@@ -709,6 +709,7 @@ kind = "shear"
 dimension = "plane_strain"
 thickness = 0.02
 horizons = "constant"
+formulation = "paper"
 dilatation = "gradient"
 
 [discretization]

@@ -713,22 +713,33 @@ fn batch_runs_print_progress_lines() {
     assert!(!quiet.stderr.contains("progress"), "{}", quiet.stderr);
 }
 
-/// Item 10: a shear-model plate whose spacing passes the length checks but at
-/// which the model's own quantities (`1/(|ξ|² m)`) leave double precision is
-/// refused naming regions[0].spacing, statically and in dynamics (at 1e-82 m
-/// it was called a singular shape tensor, at 1e78 m "non-finite value in the
-/// displacement solution"); the same plate at 0.01 m solves.
+/// Item 10: a shear-model plate (the paper's force) whose spacing passes the
+/// length checks but at which the model's own quantities (`1/(|ξ|² m)`) leave
+/// double precision is refused naming regions[0].spacing, statically and in
+/// dynamics (at 1e-82 m it was called a singular shape tensor, at 1e78 m
+/// "non-finite value in the displacement solution"); the same plate at 0.01 m
+/// solves. The energy formulation and the bond-based model keep their
+/// quantities in range there and must solve, with the displacement of the
+/// 0.01 m plate scaled by h/0.01 (traction × area ∝ h, stiffness per unit
+/// thickness independent of h), to 1e-9: the partial volumes were computed
+/// from products of four lengths that left double precision (the bond-based
+/// plate was 54 % too stiff at 1e-82 m and 49 % too soft at 1e78 m, exit 0).
 #[test]
 fn a_shear_body_beyond_double_precision_names_its_spacing() {
-    let plate = |h: f64, dynamics: bool| {
+    let plate = |h: f64, dynamics: bool, model: &str| {
         let (density, section) = if dynamics {
             ("density = 1000.0\n", "[dynamics]\nsteps = 5\n")
         } else {
             ("", "")
         };
+        let nu = if model.contains("bond_based") {
+            "0.3333333333333333"
+        } else {
+            "0.3"
+        };
         format!(
-            "[model]\ndimension = \"plane_stress\"\nthickness = 0.01\nkind = \"shear\"\n\
-             [materials.soft]\nyoungs_modulus = 1.0e9\npoisson_ratio = 0.3\n{density}\
+            "[model]\ndimension = \"plane_stress\"\nthickness = 0.01\n{model}\n\
+             [materials.soft]\nyoungs_modulus = 1.0e9\npoisson_ratio = {nu}\n{density}\
              [[regions]]\nmaterial = \"soft\"\nspacing = {h:e}\n\
              box = {{ min = [0.0, 0.0], max = [{:e}, {:e}] }}\n\
              [[boundary]]\nname = \"left\"\nbox = {{ min = [0.0, 0.0], max = [{h:e}, {:e}] }}\n\
@@ -740,16 +751,17 @@ fn a_shear_body_beyond_double_precision_names_its_spacing() {
             10.0 * h
         )
     };
+    let paper = "kind = \"shear\"\nformulation = \"paper\"";
     for dynamics in [false, true] {
         let ok = run(
             &format!("shear-scale-ok-{dynamics}"),
-            &plate(0.01, dynamics),
+            &plate(0.01, dynamics, paper),
         );
         assert_eq!(ok.code, Some(0), "{}", ok.stderr);
         for h in [1e-82, 1e78] {
             let r = run(
                 &format!("shear-scale-{h:e}-{dynamics}"),
-                &plate(h, dynamics),
+                &plate(h, dynamics, paper),
             );
             assert_eq!(r.code, Some(2), "{h:e}: {}", r.stderr);
             assert!(
@@ -758,6 +770,21 @@ fn a_shear_body_beyond_double_precision_names_its_spacing() {
                 "{h:e}: {}",
                 r.stderr
             );
+        }
+    }
+    let max_u = |r: &Run| {
+        r.summary.as_ref().unwrap()["max_displacement"]
+            .as_f64()
+            .unwrap()
+    };
+    for model in ["kind = \"shear\"", "kind = \"bond_based\""] {
+        let base = run("scale-base", &plate(0.01, false, model));
+        assert_eq!(base.code, Some(0), "{}", base.stderr);
+        for h in [1e-82, 1e78] {
+            let r = run(&format!("scale-{h:e}"), &plate(h, false, model));
+            assert_eq!(r.code, Some(0), "{model} at {h:e}: {}", r.stderr);
+            let ratio = max_u(&r) / (max_u(&base) * h / 0.01);
+            assert!((ratio - 1.0).abs() < 1e-9, "{model} at {h:e}: {ratio}");
         }
     }
 }

@@ -69,7 +69,10 @@
 //! a Gmsh mesh: an irregular cloud, not measured) the continuum value is used and
 //! the run says so.
 
-use crate::scene::{Dimension, EnergyCounting, ShearCriterion, VolumeCorrection};
+use crate::scene::{
+    Dimension, EnergyCounting, ShearCriterion, ShearFormulation, SurfaceCorrection,
+    VolumeCorrection,
+};
 
 /// What the strip measures of one lattice.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -81,8 +84,21 @@ pub struct LatticeFactors {
     pub trapping: f64,
 }
 
-/// `(m, D, r)` of the bond-based model, 2D, overlap partial volumes (the default).
+/// `(m, D, r)` of the bond-based model, 2D, overlap partial volumes (the default),
+/// with the surface correction (the default; `cargo run --release --example
+/// fracture_calibration -- table`).
 const BOND_BASED_2D_OVERLAP: &[(f64, f64, f64)] = &[
+    (2.015, 1.4995, 1.1450),
+    (2.515, 1.4469, 1.0888),
+    (3.015, 1.2355, 1.0620),
+    (3.515, 1.2297, 1.0714),
+    (4.015, 1.1484, 1.0540),
+    (4.515, 1.0955, 1.0648),
+    (5.015, 1.0896, 1.0501),
+];
+
+/// The same without the surface correction (`surface_correction = "none"`).
+const BOND_BASED_2D_OVERLAP_UNCORRECTED: &[(f64, f64, f64)] = &[
     (2.015, 1.5002, 1.1444),
     (2.515, 1.2855, 1.1107),
     (3.015, 1.2358, 1.0613),
@@ -92,24 +108,45 @@ const BOND_BASED_2D_OVERLAP: &[(f64, f64, f64)] = &[
     (5.015, 1.0897, 1.0539),
 ];
 
-/// `(m, D, r)` of the bond-based model, 3D, overlap partial volumes, at these `m`
-/// only (`cargo run --release --example fracture_calibration -- 3d 3.015`:
-/// 14,784 points, 133,760 bonds broken; validation/fracture/README.md Sec. 7).
-const BOND_BASED_3D_OVERLAP: &[(f64, f64, f64)] = &[(3.015, 1.0968, 1.0250)];
+/// `(m, D, r)` of the bond-based model, 3D, overlap partial volumes, surface
+/// correction, at these `m` only (`cargo run --release --example
+/// fracture_calibration -- 3d 3.015`: 14,784 points, 135,216 bonds broken;
+/// validation/fracture/README.md Sec. 7).
+const BOND_BASED_3D_OVERLAP: &[(f64, f64, f64)] = &[(3.015, 1.0964, 1.0192)];
+
+/// The same without the surface correction (133,760 bonds broken).
+const BOND_BASED_3D_OVERLAP_UNCORRECTED: &[(f64, f64, f64)] = &[(3.015, 1.0968, 1.0250)];
 
 /// `(m, D, r)` of the bond-based model, 2D, no partial-volume correction (at these
-/// `m` only: without partial volumes the bond set jumps between them).
-const BOND_BASED_2D_NONE: &[(f64, f64, f64)] = &[(3.015, 1.2756, 1.0684), (4.015, 1.0631, 1.0477)];
+/// `m` only: without partial volumes the bond set jumps between them), surface
+/// correction.
+const BOND_BASED_2D_NONE: &[(f64, f64, f64)] = &[(3.015, 1.2753, 1.0695), (4.015, 1.0629, 1.0448)];
 
-/// `(m, D, r)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only).
-const BOND_BASED_2D_RAMP: &[(f64, f64, f64)] = &[(3.015, 1.0694, 1.0841), (4.015, 0.9711, 1.0524)];
+/// The same without the surface correction.
+const BOND_BASED_2D_NONE_UNCORRECTED: &[(f64, f64, f64)] =
+    &[(3.015, 1.2756, 1.0684), (4.015, 1.0631, 1.0477)];
+
+/// `(m, D, r)` of the bond-based model, 2D, 000 Eq. A.1 ramp (at these `m` only),
+/// surface correction.
+const BOND_BASED_2D_RAMP: &[(f64, f64, f64)] = &[(3.015, 1.0880, 1.0852), (4.015, 0.9710, 1.0501)];
+
+/// The same without the surface correction.
+const BOND_BASED_2D_RAMP_UNCORRECTED: &[(f64, f64, f64)] =
+    &[(3.015, 1.0694, 1.0841), (4.015, 0.9711, 1.0524)];
 
 /// `(m, D, r)` of the shear model in mode I, 2D, overlap partial volumes, ν = 1/3,
-/// energy criterion, pair counting (at these `m` only).
-const SHEAR_2D_ENERGY: &[(f64, f64, f64)] = &[(3.015, 1.7732, 1.0433)];
+/// energy criterion, pair counting, energy formulation (the default; at these
+/// `m` only; `cargo run --release --example fracture_calibration -- modes 3.015`).
+const SHEAR_2D_ENERGY: &[(f64, f64, f64)] = &[(3.015, 1.6825, 1.0334)];
 
 /// The same for the deviatoric criterion of 001 Eq. 37.
-const SHEAR_2D_DEVIATORIC: &[(f64, f64, f64)] = &[(3.015, 2.0081, 1.0689)];
+const SHEAR_2D_DEVIATORIC: &[(f64, f64, f64)] = &[(3.015, 1.8776, 1.0661)];
+
+/// The energy criterion with the paper's force (`model.formulation = "paper"`).
+const SHEAR_2D_ENERGY_PAPER: &[(f64, f64, f64)] = &[(3.015, 1.7732, 1.0433)];
+
+/// The deviatoric criterion with the paper's force.
+const SHEAR_2D_DEVIATORIC_PAPER: &[(f64, f64, f64)] = &[(3.015, 2.0081, 1.0689)];
 
 /// The Poisson ratio of the shear model's measurements.
 const SHEAR_POISSON_RATIO: f64 = 1.0 / 3.0;
@@ -152,16 +189,28 @@ impl Uncalibrated {
 pub fn bond_based_factors(
     dimension: Dimension,
     rule: VolumeCorrection,
+    surfaces: SurfaceCorrection,
     m: f64,
 ) -> Result<LatticeFactors, Uncalibrated> {
+    let corrected = surfaces == SurfaceCorrection::Energy;
+    let pick = |with, without| if corrected { with } else { without };
     match (dimension, rule) {
-        (Dimension::Three, VolumeCorrection::Overlap) => {
-            node(BOND_BASED_3D_OVERLAP, m).ok_or(Uncalibrated::Dimension)
-        }
+        (Dimension::Three, VolumeCorrection::Overlap) => node(
+            pick(BOND_BASED_3D_OVERLAP, BOND_BASED_3D_OVERLAP_UNCORRECTED),
+            m,
+        )
+        .ok_or(Uncalibrated::Dimension),
         (Dimension::PlaneStress | Dimension::PlaneStrain, rule) => match rule {
-            VolumeCorrection::Overlap => interpolate(BOND_BASED_2D_OVERLAP, m),
-            VolumeCorrection::None => node(BOND_BASED_2D_NONE, m),
-            VolumeCorrection::Ramp => node(BOND_BASED_2D_RAMP, m),
+            VolumeCorrection::Overlap => interpolate(
+                pick(BOND_BASED_2D_OVERLAP, BOND_BASED_2D_OVERLAP_UNCORRECTED),
+                m,
+            ),
+            VolumeCorrection::None => {
+                node(pick(BOND_BASED_2D_NONE, BOND_BASED_2D_NONE_UNCORRECTED), m)
+            }
+            VolumeCorrection::Ramp => {
+                node(pick(BOND_BASED_2D_RAMP, BOND_BASED_2D_RAMP_UNCORRECTED), m)
+            }
         }
         .ok_or(Uncalibrated::HorizonFactor),
         _ => Err(Uncalibrated::Dimension),
@@ -174,6 +223,7 @@ pub fn bond_based_factors(
 pub fn shear_factors(
     dimension: Dimension,
     rule: VolumeCorrection,
+    formulation: ShearFormulation,
     criterion: ShearCriterion,
     counting: EnergyCounting,
     nu: f64,
@@ -188,9 +238,11 @@ pub fn shear_factors(
     if (nu - SHEAR_POISSON_RATIO).abs() > 1e-9 {
         return Err(Uncalibrated::PoissonRatio);
     }
-    let table = match criterion {
-        ShearCriterion::Energy => SHEAR_2D_ENERGY,
-        ShearCriterion::Deviatoric => SHEAR_2D_DEVIATORIC,
+    let table = match (formulation, criterion) {
+        (ShearFormulation::Energy, ShearCriterion::Energy) => SHEAR_2D_ENERGY,
+        (ShearFormulation::Energy, ShearCriterion::Deviatoric) => SHEAR_2D_DEVIATORIC,
+        (ShearFormulation::Paper, ShearCriterion::Energy) => SHEAR_2D_ENERGY_PAPER,
+        (ShearFormulation::Paper, ShearCriterion::Deviatoric) => SHEAR_2D_DEVIATORIC_PAPER,
     };
     let pair = node(table, m).ok_or(Uncalibrated::HorizonFactor)?;
     Ok(match counting {
@@ -269,9 +321,21 @@ mod tests {
     /// nothing else (the reason names the dimension).
     #[test]
     fn three_dimensions_at_the_measured_horizon_factor_only() {
-        let three = |rule, m| bond_based_factors(Dimension::Three, rule, m);
+        let three =
+            |rule, m| bond_based_factors(Dimension::Three, rule, SurfaceCorrection::Energy, m);
         assert_eq!(
             three(VolumeCorrection::Overlap, 3.015).unwrap().dissipation,
+            1.0964
+        );
+        assert_eq!(
+            bond_based_factors(
+                Dimension::Three,
+                VolumeCorrection::Overlap,
+                SurfaceCorrection::None,
+                3.015
+            )
+            .unwrap()
+            .dissipation,
             1.0968
         );
         for (rule, m) in [
@@ -282,7 +346,12 @@ mod tests {
             assert_eq!(three(rule, m), Err(Uncalibrated::Dimension));
         }
         assert_eq!(
-            bond_based_factors(Dimension::One, VolumeCorrection::Overlap, 3.015),
+            bond_based_factors(
+                Dimension::One,
+                VolumeCorrection::Overlap,
+                SurfaceCorrection::Energy,
+                3.015
+            ),
             Err(Uncalibrated::Dimension)
         );
     }
@@ -291,11 +360,17 @@ mod tests {
     fn every_table_is_sorted() {
         for t in [
             BOND_BASED_2D_OVERLAP,
+            BOND_BASED_2D_OVERLAP_UNCORRECTED,
             BOND_BASED_3D_OVERLAP,
+            BOND_BASED_3D_OVERLAP_UNCORRECTED,
             BOND_BASED_2D_NONE,
+            BOND_BASED_2D_NONE_UNCORRECTED,
             BOND_BASED_2D_RAMP,
+            BOND_BASED_2D_RAMP_UNCORRECTED,
             SHEAR_2D_ENERGY,
             SHEAR_2D_DEVIATORIC,
+            SHEAR_2D_ENERGY_PAPER,
+            SHEAR_2D_DEVIATORIC_PAPER,
         ] {
             assert!(t.windows(2).all(|w| w[0].0 < w[1].0));
             assert!(t

@@ -249,11 +249,13 @@ fn lattice_factors(
         ModelKind::BondBased => calibration::bond_based_factors(
             scene.model.dimension,
             scene.discretization.volume_correction,
+            scene.discretization.surface_correction,
             m,
         ),
         ModelKind::Shear => calibration::shear_factors(
             scene.model.dimension,
             scene.discretization.volume_correction,
+            scene.model.formulation,
             scene.fracture.shear_criterion,
             scene.fracture.shear_energy,
             scene.materials[disc.points.material[i] as usize].poisson_ratio,

@@ -29,6 +29,7 @@ use crate::geometry::mesh_file::{self, MeshGroup};
 use crate::geometry::point_file;
 use crate::notes::Notes;
 use crate::processes::{agreed, Processes};
+use crate::scene::VolumeCorrection;
 use crate::scene::{HorizonMode, IsolatedPolicy, Scene};
 use groups::PointGroup;
 use share::{Distribution, Share};
@@ -179,6 +180,22 @@ impl Discretization {
     /// processes each hold every bond).
     pub fn partial_share(&self) -> Option<&Share> {
         self.share.as_ref().filter(|s| !s.every_bond)
+    }
+
+    /// The same points with the bonds they would have without pre-cracks (the
+    /// reference of the surface correction, `model::surface`), searched with the
+    /// same partial-volume `rule` and over the same share.
+    pub fn without_cracks(&self, rule: VolumeCorrection) -> Result<Discretization, Error> {
+        let searched = self.share.as_ref().map(|s| &s.searched[..]);
+        let bonds = neighbours::find_bonds(&self.points, self.d, &[], rule, None, searched)?;
+        Ok(Discretization {
+            d: self.d,
+            points: self.points.clone(),
+            bonds,
+            removed_isolated: self.removed_isolated,
+            groups: Vec::new(),
+            share: self.share.clone(),
+        })
     }
 
     /// Whether this process answers for point `i` (its force, reaction,

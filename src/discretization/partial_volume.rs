@@ -61,10 +61,12 @@ impl PartialVolume {
                     0.0
                 }
             }
+            // In units of r: the overlaps' products of four lengths would leave
+            // double precision at spacings far from 1 m (1e-82 m: 1e-328).
             VolumeCorrection::Overlap => match self.d {
                 1 => ((horizon + r - distance) / (2.0 * r)).clamp(0.0, 1.0),
-                2 => disc_overlap(horizon, r, distance) / (PI * r * r),
-                _ => ball_overlap(horizon, r, distance) / (4.0 / 3.0 * PI * r * r * r),
+                2 => disc_overlap(horizon / r, 1.0, distance / r) / PI,
+                _ => ball_overlap(horizon / r, 1.0, distance / r) / (4.0 / 3.0 * PI),
             },
         }
     }

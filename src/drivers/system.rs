@@ -130,11 +130,11 @@ fn stiffness_pattern(
 }
 
 /// What the solver should know about `scene` besides its matrix: a symmetric
-/// `K` (a star coupling), a fracture run, or a shear-model body with a nearly
+/// `K` (a star coupling, or the shear model's energy formulation), a fracture run, or a shear-model body with a nearly
 /// incompressible material ([`crate::model::shear::NEAR_INCOMPRESSIBLE`]).
 pub fn solver_hints(scene: &Scene, coupling: Coupling) -> Hints {
     Hints {
-        symmetric: coupling == Coupling::Star,
+        symmetric: coupling == Coupling::Star || scene.model.energy_shear(),
         fracture: scene.quasi_static.is_some(),
         near_incompressible: scene.model.kind == ModelKind::Shear
             && scene

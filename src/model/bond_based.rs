@@ -31,6 +31,9 @@ pub struct BondBased {
     pub surface_factor: Vec<f64>,
     /// Owners whose moments the surface correction could not match (kept at 1).
     pub unmatched_owners: usize,
+    /// Whether the pre-crack faces were corrected as surfaces, because the
+    /// uncracked bonds could not be searched ([`super::surface`], "Pre-cracks").
+    pub crack_faces_corrected: bool,
 }
 
 impl BondBased {
@@ -49,17 +52,29 @@ impl BondBased {
             micromodulus,
             surface_factor: Vec::new(),
             unmatched_owners: 0,
+            crack_faces_corrected: false,
         }
     }
 
-    /// The same model with the surface correction of [`super::surface`].
+    /// The same model with the surface correction of [`super::surface`]
+    /// (`has_cracks`: the scene has pre-cracks, whose faces stay uncorrected).
     pub fn with_surface_correction(
         mut self,
         disc: &Discretization,
         rule: VolumeCorrection,
         thickness: f64,
+        has_cracks: bool,
     ) -> Self {
-        let (factors, unmatched) = super::surface::factors(disc, rule, thickness);
+        let (factors, unmatched) = match has_cracks {
+            false => super::surface::factors(disc, rule, thickness),
+            true => match super::surface::factors_before_cracks(disc, rule, thickness) {
+                Some(before) => before,
+                None => {
+                    self.crack_faces_corrected = true;
+                    super::surface::factors(disc, rule, thickness)
+                }
+            },
+        };
         self.surface_factor = factors;
         self.unmatched_owners = unmatched;
         self
@@ -86,11 +101,22 @@ impl BondBased {
             scene.model.thickness,
         );
         match scene.discretization.surface_correction {
-            SurfaceCorrection::Energy => model.with_surface_correction(
-                disc,
-                scene.discretization.volume_correction,
-                scene.model.thickness,
-            ),
+            SurfaceCorrection::Energy => {
+                let mut model = model.with_surface_correction(
+                    disc,
+                    scene.discretization.volume_correction,
+                    scene.model.thickness,
+                    !scene.cracks.is_empty(),
+                );
+                let held = super::surface::grip_points(disc, &scene.boundaries);
+                let fractions = super::surface::grip_fractions(disc, &held);
+                model
+                    .surface_factor
+                    .iter_mut()
+                    .zip(fractions)
+                    .for_each(|(g, t)| *g /= t);
+                model
+            }
             SurfaceCorrection::None => model,
         }
     }

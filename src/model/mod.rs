@@ -130,17 +130,28 @@ impl AnyModel {
 impl AnyModel {
     /// What the user should know about the model's set-up: owners the surface
     /// correction could not match (their families cannot reach a full one's
-    /// moments, e.g. a body one point thick), left uncorrected.
+    /// moments, e.g. a body one point thick), left uncorrected, and pre-crack
+    /// faces corrected for want of memory.
     pub fn warnings(&self) -> Vec<String> {
-        match self {
-            AnyModel::BondBased(m) if m.unmatched_owners > 0 => vec![format!(
-                "warning: the surface correction left {} point(s) uncorrected: their bonds \
-                 cannot reach the stiffness of a full family (a body thinner than about two \
-                 spacings?)",
-                m.unmatched_owners
-            )],
-            _ => Vec::new(),
+        let mut warnings = Vec::new();
+        if let AnyModel::BondBased(m) = self {
+            if m.unmatched_owners > 0 {
+                warnings.push(format!(
+                    "warning: the surface correction left {} point(s) uncorrected: their bonds \
+                     cannot reach the stiffness of a full family (a body thinner than about two \
+                     spacings?)",
+                    m.unmatched_owners
+                ));
+            }
+            if m.crack_faces_corrected {
+                warnings.push(String::from(
+                    "warning: the bonds of the body without its pre-cracks could not be \
+                     searched (memory); the pre-crack faces were corrected as free surfaces, \
+                     which raises the fracture loads above the calibration's",
+                ));
+            }
         }
+        warnings
     }
 }
 

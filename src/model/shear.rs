@@ -31,7 +31,52 @@
 //! pair of `{i} ∪ H_i`, so the stiffness links neighbours of neighbours
 //! ([`Coupling::Family`]) and is not symmetric in general.
 //!
-//! **Surface correction** (optional, `model.dilatation = "gradient"`): the
+//! **Energy formulation** (`model.formulation = "energy"`, the default; issue
+//! 33). The paper's force is not the derivative of an energy: its tangent is
+//! not symmetric, and at a free surface, where the truncated shape tensor is
+//! anisotropic (`K_i ≠ (m_i/d) I`), it transmits `(1 + α)` times Hooke's stress
+//! (validation/bimaterial_bar/shear_surface). The energy formulation derives
+//! every bond force from the strain energy of the owner's cell,
+//!
+//! ```text
+//! E = Σ_i V_i W_i,   W_i = ½ λ (tr G)² + μ G_s : G_s + (α_i/2) Σ_j w_j |r_j|²,
+//! G_i = Σ_j η_j ⊗ b_j (b_j = w_j K_i⁻¹ ξ_j),   r_j = η_j − G_i ξ_j,   α_i = 2 d μ / m_i,
+//! ```
+//!
+//! `λ = κ − 2μ/d`, `G_s = (G + Gᵀ)/2`: Hooke's energy of the family's displacement
+//! gradient (exact for every affine field, whatever the family) plus the paper's
+//! own penalty on the non-affine part. The force of bond `j` on the owner is
+//! `V_i ∂W_i/∂η_j = V_i [σ b_j + α (w_j r_j − C b_j)]`, `σ = λ tr G I + 2μ G_s`,
+//! `C = Σ_k w_k r_k ⊗ ξ_k` (zero: `Σ_k w_k η_k ⊗ ξ_k = G K`). Where the family is
+//! full, `K = (m/d) I`, `b_j = (d/m) w_j ξ_j` and this is exactly 001 Eq. 27-28
+//! linearised (formulation Sec. 4): `(dω/m)[(κ − 2μ/d) θ ξ + 2μ (η − W ξ)]` with
+//! `θ = tr G`, `W = (G − Gᵀ)/2`. Anywhere, the flux `Σ_j f_j ⊗ ξ_j / V_i` is σ
+//! (the penalty's flux vanishes), so a homogeneous strain gives Hooke's stress
+//! at surface points too. The tangent (`∂f_m/∂η_k = V_i A_mk`)
+//!
+//! ```text
+//! A_mk = λ b_m ⊗ b_k + μ [(b_m·b_k) I + b_k ⊗ b_m]
+//!      + α [w_m δ_mk − w_m (b_k·ξ_m) − w_k (b_m·ξ_k) + b_m·K b_k] I
+//! ```
+//!
+//! satisfies `A_mk = A_kmᵀ`: `K` is symmetric positive semi-definite (Cholesky,
+//! CG). Finite deformation (explicit dynamics, the nonlinear force): the
+//! Saint Venant-Kirchhoff energy of `F = I + G` with the same penalty on
+//! `r_j = y_j − F ξ_j`: `σ b_j` becomes `P b_j`, `P = F S`, `S = λ tr E I + 2μ E`,
+//! `E = (FᵀF − I)/2`; objective (a rotation `Q` gives `F = Q`, `E = 0`, `r = 0`)
+//! and equal to the linearised force to first order. The damage criteria use
+//! the same kinematics (θ = tr G, rotation from `F`), as `dilatation = "gradient"`.
+//!
+//! **Grips** (energy formulation). A point whose every component is prescribed
+//! is part of a rigid grip: it stores no energy (its moduli are set to zero,
+//! so its recovered stress is zero), and a bond from a free owner into the grip,
+//! of which only the part `t` lies in the free body
+//! ([`super::surface::grip_fractions`]), weighs `t w` and sees `η/t`: under a
+//! field linear up to the grip's face its owner's gradient is exact, as a clamp
+//! on that face requires (without this a bar between grips is softer by about
+//! 0.28 δ of length per grip; validation/surfaces).
+//!
+//! //! **Paper's force, gradient dilatation** (`model.formulation = "paper"`, `model.dilatation = "gradient"`): the
 //! weighted dilatation `θ = (d/m) Σ w η_r·ξ_r` equals `tr ε` under a homogeneous
 //! strain only when `K_i = (m_i/d) I`, i.e. for a full, symmetric family. At a free
 //! surface it does not, which softens or stiffens the rim. The corrected form
@@ -70,6 +115,10 @@ struct Owner {
     a_sum: [f64; 3],
     /// `Σ_k b_k`.
     b_sum: [f64; 3],
+    /// Shape tensor `K_i` (energy formulation: the penalty's `b·K b` terms).
+    k: Mat3,
+    /// `Σ_k w_k ξ_k`.
+    x_sum: [f64; 3],
     /// Bulk modulus κ.
     kappa: f64,
     /// Shear modulus μ.
@@ -85,6 +134,8 @@ impl Owner {
             k_inv: [[0.0; 3]; 3],
             a_sum: [0.0; 3],
             b_sum: [0.0; 3],
+            k: [[0.0; 3]; 3],
+            x_sum: [0.0; 3],
             kappa,
             mu,
         }
@@ -97,6 +148,11 @@ pub struct Shear {
     d: usize,
     owners: Vec<Owner>,
     gradient_dilatation: bool,
+    /// The energy formulation (module docs); `false`: the paper's force.
+    energy: bool,
+    /// Energy formulation: the free part `t` of each bond next to a grip
+    /// (module docs, "Grips"); empty: 1 for every bond.
+    grip: Vec<f64>,
 }
 
 impl Shear {
@@ -111,6 +167,7 @@ impl Shear {
         dim: Dimension,
         materials: &[Material],
         gradient_dilatation: bool,
+        energy: bool,
     ) -> Result<Self, NumericalError> {
         use rayon::prelude::*;
         let d = disc.d;
@@ -121,7 +178,7 @@ impl Shear {
                 if disc.share.as_ref().is_some_and(|s| !s.holds(i)) {
                     return Ok(Owner::failed(kappa, mu));
                 }
-                owner_data(disc, i, kappa, mu).ok_or(NumericalError::SingularShapeTensor {
+                owner_data(disc, i, kappa, mu, &[]).ok_or(NumericalError::SingularShapeTensor {
                     point: i,
                     position: disc.points.x[i],
                 })
@@ -130,18 +187,50 @@ impl Shear {
         Ok(Self {
             d,
             owners,
-            gradient_dilatation,
+            // The energy formulation's dilatation is tr G, the gradient form.
+            gradient_dilatation: gradient_dilatation || energy,
+            energy,
+            grip: Vec::new(),
         })
     }
 
     /// The model of `scene` on `disc` ([`Shear::new`]).
     pub fn of(scene: &Scene, disc: &Discretization) -> Result<Self, NumericalError> {
-        Self::new(
+        let model = Self::new(
             disc,
             scene.model.dimension,
             &scene.materials,
             scene.model.gradient_dilatation(),
-        )
+            scene.model.energy_shear(),
+        )?;
+        Ok(if model.energy {
+            model.with_grips(disc, &super::surface::grip_points(disc, &scene.boundaries))
+        } else {
+            model
+        })
+    }
+
+    /// The energy formulation next to grips (module docs, "Grips"): the bonds
+    /// between `held` and free points weigh `t w` and see `η/t` (`t`: their free
+    /// part, [`super::surface::grip_fractions`]), and a held owner stores no
+    /// energy (it belongs to the rigid grip; its recovered stress is zero).
+    pub fn with_grips(mut self, disc: &Discretization, held: &[bool]) -> Self {
+        let grip = super::surface::grip_fractions(disc, held);
+        let affected: Vec<usize> = (0..disc.points.len())
+            .filter(|&i| disc.bonds.owned_by(i).any(|b| grip[b] != 1.0))
+            .collect();
+        self.grip = grip;
+        for &i in &affected {
+            let (kappa, mu) = (self.owners[i].kappa, self.owners[i].mu);
+            if let Some(o) = owner_data(disc, i, kappa, mu, &self.grip) {
+                self.owners[i] = o;
+            }
+        }
+        for (o, _) in self.owners.iter_mut().zip(held).filter(|(_, &h)| h) {
+            o.kappa = 0.0;
+            o.mu = 0.0;
+        }
+        self
     }
 
     /// Stress at `owner` for displacements `u` (001 Eq. 32); `linear` selects the
@@ -153,6 +242,9 @@ impl Shear {
         u: &[[f64; 3]],
         linear: bool,
     ) -> Mat3 {
+        if self.energy {
+            return self.energy_cauchy(disc, owner, u, linear);
+        }
         let o = &self.owners[owner];
         let bonds = disc.bonds.owned_by(owner);
         let mut forces = vec![[0.0; 3]; bonds.len()];
@@ -320,6 +412,262 @@ impl Shear {
     }
 }
 
+/// The energy formulation (module docs): what one owner's kernels share.
+impl Shear {
+    /// `(j, ξ, w, b)` of every intact bond of owner `i`: the neighbour, the
+    /// reference bond, `w = V_j ν/|ξ|²` and `b = w K⁻¹ ξ`.
+    fn energy_bonds(&self, disc: &Discretization, i: usize) -> Vec<EnergyBond> {
+        let o = &self.owners[i];
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        bonds
+            .owned_by(i)
+            .filter(|&b| bonds.intact[b])
+            .map(|b| {
+                let (j, xi) = bond_vector(disc, i, b);
+                let t = self.grip.get(b).copied().unwrap_or(1.0);
+                let w = t * p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
+                EnergyBond {
+                    j,
+                    xi,
+                    w,
+                    b: mat_vec(&o.k_inv, &xi).map(|v| w * v),
+                    scale: 1.0 / t,
+                }
+            })
+            .collect()
+    }
+
+    /// The owner's displacement gradient `G = Σ η_k ⊗ b_k` (exact for every
+    /// affine field, whatever the family).
+    fn energy_gradient(bonds: &[EnergyBond], i: usize, u: &[[f64; 3]]) -> Mat3 {
+        let mut g = [[0.0; 3]; 3];
+        for EnergyBond { j, b, scale, .. } in bonds {
+            let eta = sub(&u[*j], &u[i]).map(|v| scale * v);
+            for r in 0..3 {
+                for c in 0..3 {
+                    g[r][c] += eta[r] * b[c];
+                }
+            }
+        }
+        g
+    }
+
+    /// The owner's stress measure conjugate to `G`: Hooke's law of `G`
+    /// (`linear`) or the first Piola-Kirchhoff stress `P = F S` of the
+    /// Saint Venant-Kirchhoff energy, `F = I + G`, `S = λ tr E I + 2μ E`,
+    /// `E = (FᵀF − I)/2`; `λ = κ − 2μ/d`. Leading `d × d` block.
+    fn energy_stress(&self, i: usize, g: &Mat3, linear: bool) -> Mat3 {
+        let o = &self.owners[i];
+        let d = self.d;
+        let lambda = o.kappa - 2.0 * o.mu / d as f64;
+        let mut out = [[0.0; 3]; 3];
+        if linear {
+            let tr: f64 = (0..d).map(|a| g[a][a]).sum();
+            for r in 0..d {
+                for c in 0..d {
+                    out[r][c] = o.mu * (g[r][c] + g[c][r]) + if r == c { lambda * tr } else { 0.0 };
+                }
+            }
+            return out;
+        }
+        let f: Mat3 = std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                if r < d && c < d {
+                    g[r][c] + f64::from(r == c)
+                } else {
+                    0.0
+                }
+            })
+        });
+        let mut e = [[0.0; 3]; 3];
+        for r in 0..d {
+            for c in 0..d {
+                e[r][c] =
+                    0.5 * ((0..d).map(|k| f[k][r] * f[k][c]).sum::<f64>() - f64::from(r == c));
+            }
+        }
+        let tr: f64 = (0..d).map(|a| e[a][a]).sum();
+        let mut stress = [[0.0; 3]; 3];
+        for r in 0..d {
+            for c in 0..d {
+                stress[r][c] = 2.0 * o.mu * e[r][c] + if r == c { lambda * tr } else { 0.0 };
+            }
+        }
+        for r in 0..d {
+            for c in 0..d {
+                out[r][c] = (0..d).map(|k| f[r][k] * stress[k][c]).sum();
+            }
+        }
+        out
+    }
+
+    /// The penalty's modulus `α_i = 2 d μ / m_i` (module docs).
+    fn alpha(&self, i: usize) -> f64 {
+        let o = &self.owners[i];
+        2.0 * self.d as f64 * o.mu / o.m
+    }
+
+    /// The force of every bond of owner `i` on the owner,
+    /// `V_i ∂W_i/∂η_j = V_i [P b_j + α (w_j r_j − C b_j)]`, `r_j = η_j − G ξ_j`,
+    /// `C = Σ_k w_k r_k ⊗ ξ_k` (module docs), into `out` (0 for broken bonds).
+    fn energy_forces(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        u: &[[f64; 3]],
+        linear: bool,
+        out: &mut [[f64; 3]],
+    ) {
+        let bonds = &disc.bonds;
+        let first = bonds.offsets[i];
+        let family = self.energy_bonds(disc, i);
+        let g = Self::energy_gradient(&family, i, u);
+        let stress = self.energy_stress(i, &g, linear);
+        let residual = |e: &EnergyBond| -> [f64; 3] {
+            let eta = sub(&u[e.j], &u[i]).map(|v| e.scale * v);
+            std::array::from_fn(|r| eta[r] - (0..3).map(|c| g[r][c] * e.xi[c]).sum::<f64>())
+        };
+        let mut c = [[0.0; 3]; 3];
+        for e in &family {
+            let (r, xi, w) = (residual(e), &e.xi, e.w);
+            for a in 0..3 {
+                for b in 0..3 {
+                    c[a][b] += w * r[a] * xi[b];
+                }
+            }
+        }
+        let alpha = self.alpha(i);
+        let volume = disc.points.volume[i];
+        let mut next = family.iter();
+        for b in bonds.owned_by(i) {
+            out[b - first] = if bonds.intact[b] {
+                let e = next.next().expect("one entry per intact bond");
+                let r = residual(e);
+                let pb = mat_vec(&stress, &e.b);
+                let cb = mat_vec(&c, &e.b);
+                std::array::from_fn(|a| e.scale * volume * (pb[a] + alpha * (e.w * r[a] - cb[a])))
+            } else {
+                [0.0; 3]
+            };
+        }
+    }
+
+    /// Recovered stress of the energy formulation: Hooke's law of `G`
+    /// (`linear`), or the Cauchy stress `F S Fᵀ / det F`. It is the owner's
+    /// own stress: `Σ_j (force of bond j) ⊗ ξ_j / V_i = P` for any family (the
+    /// penalty's flux `Σ w r ⊗ ξ − C Σ b ⊗ ξ` vanishes).
+    fn energy_cauchy(&self, disc: &Discretization, i: usize, u: &[[f64; 3]], linear: bool) -> Mat3 {
+        let family = self.energy_bonds(disc, i);
+        let g = Self::energy_gradient(&family, i, u);
+        let p = self.energy_stress(i, &g, linear);
+        if linear {
+            return p;
+        }
+        let d = self.d;
+        let f: Mat3 = std::array::from_fn(|r| {
+            std::array::from_fn(|c| {
+                if r < d && c < d {
+                    g[r][c] + f64::from(r == c)
+                } else {
+                    f64::from(r == c)
+                }
+            })
+        });
+        let det = to_matrix(&f).determinant();
+        let mut sigma = [[0.0; 3]; 3];
+        for r in 0..d {
+            for c in 0..d {
+                sigma[r][c] = (0..d).map(|k| p[r][k] * f[c][k]).sum::<f64>() / det;
+            }
+        }
+        sigma
+    }
+
+    /// Blocks `K[row][column]` of owner `i` for the energy formulation:
+    /// with `β, χ, Kβ, δ` of the column (a neighbour `k`: `b_k`, `w_k ξ_k`,
+    /// `K b_k`, `w_k` on row `k` only; the owner: `−Σ b`, `−Σ w ξ`, `−K Σ b`,
+    /// `−w_m` on every row `m`), row `m` gets `V_i A_m` and the owner row
+    /// `−V_i Σ_m A_m`, where
+    /// `A_m = λ b_m ⊗ β + μ [(b_m·β) I + β ⊗ b_m] + α [δ − w_m (β·ξ_m) − b_m·χ + b_m·Kβ] I`.
+    fn energy_tangent_column(
+        &self,
+        disc: &Discretization,
+        i: usize,
+        column: Column,
+        add: &mut dyn FnMut(usize, &Block),
+    ) {
+        let o = &self.owners[i];
+        let d = self.d;
+        let bonds = &disc.bonds;
+        let p = &disc.points;
+        let scale_of = |b: usize| 1.0 / self.grip.get(b).copied().unwrap_or(1.0);
+        let (beta, chi, k_beta, own) = match column {
+            Column::Neighbour(k) => {
+                if !bonds.intact[k] {
+                    return;
+                }
+                let (_, xi) = bond_vector(disc, i, k);
+                let w = p.volume[bonds.neighbour[k] as usize] * bonds.volume_factor[k]
+                    / (dot(&xi, &xi) * scale_of(k));
+                let bk = mat_vec(&o.k_inv, &xi).map(|v| w * v);
+                (bk, xi.map(|v| w * v), mat_vec(&o.k, &bk), Some((k, w)))
+            }
+            Column::Owner => (
+                o.b_sum.map(|v| -v),
+                o.x_sum.map(|v| -v),
+                mat_vec(&o.k, &o.b_sum).map(|v| -v),
+                None,
+            ),
+        };
+        let lambda = o.kappa - 2.0 * o.mu / d as f64;
+        let alpha = self.alpha(i);
+        let volume = p.volume[i];
+        let mut owner_block = [[0.0; 3]; 3];
+        for b in bonds.owned_by(i) {
+            if !bonds.intact[b] {
+                continue;
+            }
+            let (j, xi) = bond_vector(disc, i, b);
+            let sm = scale_of(b);
+            let w = p.volume[j] * bonds.volume_factor[b] / (dot(&xi, &xi) * sm);
+            let bm = mat_vec(&o.k_inv, &xi).map(|v| w * v);
+            // The actual block is the effective one (η_eff = s η) times s_m s_k;
+            // the owner column's sums carry s_k already (Σ s b = K⁻¹ Σ w ξ).
+            let (delta, rows) = match own {
+                Some((k, wk)) => (if k == b { wk } else { 0.0 }, sm * scale_of(k)),
+                None => (-sm * w, sm),
+            };
+            let penalty =
+                alpha * (delta - w * dot(&beta, &xi) - dot(&bm, &chi) + dot(&bm, &k_beta));
+            let bb = dot(&bm, &beta);
+            let mut block: Block = [[0.0; 3]; 3];
+            for r in 0..d {
+                for c in 0..d {
+                    let diagonal = if r == c { o.mu * bb + penalty } else { 0.0 };
+                    let a = rows * (lambda * bm[r] * beta[c] + o.mu * beta[r] * bm[c] + diagonal);
+                    block[r][c] = volume * a;
+                    owner_block[r][c] -= volume * a;
+                }
+            }
+            add(j, &block);
+        }
+        add(i, &owner_block);
+    }
+}
+
+/// One intact bond of an energy-formulation owner: the neighbour `j`, the
+/// reference bond `ξ`, its weight `w = t V_j ν/|ξ|²`, `b = w K⁻¹ ξ`, and the
+/// scale `1/t` of its relative displacement (`t`: the bond's free part, 1 away
+/// from grips).
+struct EnergyBond {
+    j: usize,
+    xi: [f64; 3],
+    w: f64,
+    b: [f64; 3],
+    scale: f64,
+}
+
 /// An owner's rotation and dilatation.
 #[derive(Debug, Clone, Copy)]
 struct Kinematics {
@@ -362,7 +710,11 @@ impl Model for Shear {
         linear: bool,
         out: &mut [[f64; 3]],
     ) {
-        self.family_forces(disc, owner, u, linear, out);
+        if self.energy {
+            self.energy_forces(disc, owner, u, linear, out);
+        } else {
+            self.family_forces(disc, owner, u, linear, out);
+        }
     }
 
     fn bond_strains(
@@ -384,7 +736,7 @@ impl Model for Shear {
         for &i in owners {
             let (kappa, mu) = (self.owners[i].kappa, self.owners[i].mu);
             let any_intact = disc.bonds.owned_by(i).any(|b| disc.bonds.intact[b]);
-            self.owners[i] = match owner_data(disc, i, kappa, mu) {
+            self.owners[i] = match owner_data(disc, i, kappa, mu, &self.grip) {
                 Some(o) => o,
                 None => {
                     if any_intact {
@@ -408,6 +760,9 @@ impl Model for Shear {
         column: Column,
         add: &mut dyn FnMut(usize, &Block),
     ) {
+        if self.energy {
+            return self.energy_tangent_column(disc, i, column, add);
+        }
         let o = &self.owners[i];
         let d = self.d;
         let df = d as f64;
@@ -477,7 +832,10 @@ impl Model for Shear {
 
 /// Weighted volume, inverse shape tensor and the column sums of owner `i`;
 /// `None` when the intact bonds do not span the space.
-fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Owner> {
+///
+/// `grip`: the free part `t` of each bond (energy formulation, module docs
+/// "Grips"; empty: 1): `m` and `K` weigh a bond by `t w`, `Σ w ξ` by `w`.
+fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64, grip: &[f64]) -> Option<Owner> {
     let d = disc.d;
     let p = &disc.points;
     let bonds = &disc.bonds;
@@ -486,11 +844,12 @@ fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Ow
         let j = bonds.neighbour[b] as usize;
         let xi = sub(&p.x[j], &p.x[i]);
         let w = p.volume[j] * bonds.volume_factor[b] / dot(&xi, &xi);
-        m += w * dot(&xi, &xi);
+        let wt = w * grip.get(b).copied().unwrap_or(1.0);
+        m += wt * dot(&xi, &xi);
         for r in 0..3 {
             xw[r] += w * xi[r];
             for c in 0..3 {
-                k[r][c] += w * xi[r] * xi[c];
+                k[r][c] += wt * xi[r] * xi[c];
             }
         }
     }
@@ -501,6 +860,8 @@ fn owner_data(disc: &Discretization, i: usize, kappa: f64, mu: f64) -> Option<Ow
         k_inv,
         a_sum: xw.map(|x| df / m * x),
         b_sum: mat_vec(&k_inv, &xw),
+        k,
+        x_sum: xw,
         kappa,
         mu,
     })

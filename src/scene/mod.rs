@@ -113,7 +113,9 @@ impl Scene {
             dynamics: dynamics.map(|d| d.method),
             fracture: quasi_static.is_some(),
         };
-        let solver = solver::validate(&spec.solver, spec.model.kind, run)?;
+        let symmetric = spec.model.kind == ModelKind::BondBased
+            || spec.model.formulation.unwrap_or_default() == ShearFormulation::Energy;
+        let solver = solver::validate(&spec.solver, symmetric, run)?;
         let name = match &spec.name {
             Some(n) => {
                 fields::name("name", n)?;

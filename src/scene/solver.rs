@@ -6,7 +6,7 @@
 //! and never reads the rest of the scene.
 
 use super::fields::positive;
-use super::spec::{ModelKind, SolverSpec};
+use super::spec::SolverSpec;
 pub use super::spec::{Ordering, PetscSolver, Precision, SolverMethod};
 use super::DynamicsMethod;
 use crate::error::InputError;
@@ -37,13 +37,16 @@ pub struct SolverSettings {
 }
 
 impl SolverSettings {
-    /// The model's default route, chosen automatically, with every other
+    /// The default route of a model whose tangent is `symmetric` (the
+    /// bond-based model, the shear model's energy formulation: Cholesky) or not
+    /// (the paper's shear force: GMRES), chosen automatically, with every other
     /// setting at its default.
-    pub fn automatic(model: ModelKind) -> Self {
+    pub fn automatic(symmetric: bool) -> Self {
         Self {
-            method: match model {
-                ModelKind::BondBased => SolverMethod::Cholesky,
-                ModelKind::Shear => SolverMethod::Gmres,
+            method: if symmetric {
+                SolverMethod::Cholesky
+            } else {
+                SolverMethod::Gmres
             },
             automatic: true,
             memory_limit_bytes: None,
@@ -69,7 +72,7 @@ pub(super) struct RunKind {
 /// dynamics on the processes of an MPI run).
 pub(super) fn validate(
     spec: &SolverSpec,
-    model: ModelKind,
+    symmetric: bool,
     run: RunKind,
 ) -> Result<SolverSettings, InputError> {
     if spec.method == Some(SolverMethod::Petsc) {
@@ -124,7 +127,7 @@ pub(super) fn validate(
             "0 would refactorise before every re-solve; give at least 1",
         ));
     }
-    let defaults = SolverSettings::automatic(model);
+    let defaults = SolverSettings::automatic(symmetric);
     Ok(SolverSettings {
         method: spec.method.unwrap_or(defaults.method),
         automatic: spec.method.is_none(),
@@ -170,7 +173,6 @@ fn check_petsc(dynamics: Option<DynamicsMethod>) -> Result<(), InputError> {
 mod tests {
     use super::{check_petsc, validate, PetscSolver, RunKind, SolverSpec};
     use crate::scene::DynamicsMethod;
-    use crate::scene::ModelKind;
 
     #[test]
     fn the_petsc_solver_needs_the_petsc_route() {
@@ -178,7 +180,7 @@ mod tests {
             petsc_solver: Some(PetscSolver::Mumps),
             ..Default::default()
         };
-        let e = validate(&spec, ModelKind::BondBased, RunKind::default()).unwrap_err();
+        let e = validate(&spec, true, RunKind::default()).unwrap_err();
         assert_eq!(e.field, "solver.petsc_solver");
         assert!(e.message.contains("\"petsc\" only"), "{}", e.message);
     }
@@ -194,7 +196,7 @@ mod tests {
             fracture: true,
             ..Default::default()
         };
-        let e = validate(&spec, ModelKind::BondBased, fracture).unwrap_err();
+        let e = validate(&spec, true, fracture).unwrap_err();
         if cfg!(feature = "mpi") {
             assert_eq!(e.field, "solver.petsc_solver");
             assert!(e.message.contains("\"gamg\""), "{}", e.message);
@@ -215,7 +217,7 @@ mod tests {
             dynamics: Some(DynamicsMethod::Verlet),
             ..Default::default()
         };
-        let e = validate(&spec, ModelKind::BondBased, verlet).unwrap_err();
+        let e = validate(&spec, true, verlet).unwrap_err();
         if cfg!(feature = "mpi") {
             assert_eq!(e.field, "solver.petsc_solver");
             assert!(e.message.contains("solves no linear system"));

@@ -112,10 +112,10 @@ pub enum ModelKind {
 #[serde(rename_all = "snake_case")]
 pub enum ShearFormulation {
     /// Derived from a strain energy: Hooke's law of the family's displacement
-    /// gradient plus the paper's penalty on the non-affine part.
+    /// gradient plus the paper's penalty on the non-affine part. Default.
+    #[default]
     Energy,
     /// 001 Eq. 27-28 as published (not symmetric).
-    #[default]
     Paper,
 }
 
@@ -204,10 +204,11 @@ pub enum VolumeCorrection {
 #[serde(rename_all = "snake_case")]
 pub enum SurfaceCorrection {
     /// Each owner's bonds scaled so that its stiffness tensor under homogeneous
-    /// strain equals that of a full family.
+    /// strain equals that of a full family, and bonds into grips see a clamp
+    /// on the grip's face. Default.
+    #[default]
     Energy,
     /// No correction: the bonds of a family cut by a surface keep their stiffness.
-    #[default]
     None,
 }
 

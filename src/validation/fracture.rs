@@ -86,6 +86,19 @@ pub struct Sent {
     /// A square lattice of the same spacing rotated by this angle (degrees), written
     /// as a point file ([`Sent::write`]), instead of the grid (uniform 2D plates only).
     pub lattice_angle: f64,
+    /// The surface-true defaults (`true`), or the earlier models: no surface
+    /// correction (bond-based) and the paper's force (shear).
+    pub surfaces: bool,
+}
+
+/// The `[model]` and `[discretization]` lines that choose the earlier models
+/// when `surfaces` is off (nothing otherwise).
+fn surface_lines(model: &str, surfaces: bool) -> (&'static str, &'static str) {
+    match (surfaces, model) {
+        (true, _) => ("", ""),
+        (false, "shear") => ("formulation = \"paper\"\n", ""),
+        (false, _) => ("", "surface_correction = \"none\"\n"),
+    }
 }
 
 /// Half-length of the inclined centre crack (m).
@@ -119,6 +132,7 @@ impl Sent {
             calibration: "dissipation",
             shear_criterion: "energy",
             lattice_angle: 0.0,
+            surfaces: true,
         }
     }
 
@@ -170,6 +184,9 @@ impl Sent {
         if self.lattice_angle != 0.0 {
             let _ = write!(name, "_lattice{}deg", self.lattice_angle);
         }
+        if !self.surfaces {
+            name.push_str("_uncorrected");
+        }
         name.replace('.', "p")
     }
 
@@ -198,7 +215,7 @@ impl Sent {
             "# SENT plate (validation/fracture): W = {WIDTH} m, free length L = {LENGTH} m between \
              clamped grips,\n# {}; {setting}; spacing W/{}, m = {}.\n\
              name = \"{}\"\n\n[model]\ndimension = \"{dimension}\"\nkind = \"{}\"\n\
-             horizons = \"{}\"\n\n[discretization]\nhorizon_factor = {}\n\n\
+             horizons = \"{}\"\n{}\n[discretization]\nhorizon_factor = {}\n{}\n\
              [materials.plate]\nyoungs_modulus = {YOUNGS_MODULUS:e}\n{}fracture_energy = {FRACTURE_ENERGY}\n",
             match (self.centre_crack, self.inclined) {
                 (Some(c), _) => format!("centre crack of half-length {c} m along y = 0"),
@@ -210,7 +227,9 @@ impl Sent {
             self.name(),
             self.model,
             self.horizons,
+            surface_lines(self.model, self.surfaces).0,
             self.horizon_factor,
+            surface_lines(self.model, self.surfaces).1,
             if self.model == "shear" {
                 "poisson_ratio = 0.3333333333333333\n"
             } else {
@@ -379,6 +398,8 @@ pub struct Strip {
     /// it; `D` counts only bonds whose midpoints lie in the bulk, away from the
     /// faces `z = 0` and `z = depth`, on the regular grid); `0`: 2D.
     pub depth_cells: usize,
+    /// The surface-true defaults, or the earlier models ([`Sent::surfaces`]).
+    pub surfaces: bool,
 }
 
 impl Strip {
@@ -402,6 +423,7 @@ impl Strip {
             youngs_modulus: YOUNGS_MODULUS,
             fracture_energy: FRACTURE_ENERGY,
             depth_cells: 0,
+            surfaces: true,
         }
     }
 
@@ -492,6 +514,9 @@ impl Strip {
         if self.depth_cells > 0 {
             let _ = write!(name, "_3d_depth{}", self.depth_cells);
         }
+        if !self.surfaces {
+            name.push_str("_uncorrected");
+        }
         name.replace('.', "p")
     }
 
@@ -546,8 +571,8 @@ impl Strip {
             t,
             "# Calibration strip (damage::calibration): {} x {} spacings of {h:e} m, edge \
              pre-crack of {} spacings along y = 0,\n# lattice rotated by {}°.\n\
-             name = \"{}\"\n\n[model]\ndimension = \"{}\"\nkind = \"{}\"\n\n\
-             [discretization]\nhorizon_factor = {}\nvolume_correction = \"{}\"\n\n\
+             name = \"{}\"\n\n[model]\ndimension = \"{}\"\nkind = \"{}\"\n{}\n\
+             [discretization]\nhorizon_factor = {}\nvolume_correction = \"{}\"\n{}\n\
              [materials.strip]\nyoungs_modulus = {:e}\n{}fracture_energy = {}\n",
             self.length_cells,
             self.height_cells,
@@ -556,8 +581,10 @@ impl Strip {
             self.name(),
             self.dimension,
             self.model,
+            surface_lines(self.model, self.surfaces).0,
             self.horizon_factor,
             self.volume_correction,
+            surface_lines(self.model, self.surfaces).1,
             self.youngs_modulus,
             if self.model == "shear" {
                 format!("poisson_ratio = {}\n", self.poisson_ratio)

@@ -36,8 +36,8 @@ pub struct Bimaterial {
 }
 
 impl Bimaterial {
-    /// Centre of the innermost point of the left constrained layer (support of the reference).
-    pub fn support_left(&self) -> f64 {
+    /// Centre of the innermost point of the left constrained layer.
+    fn innermost_left(&self) -> f64 {
         if self.strip {
             0.025
         } else {
@@ -46,12 +46,62 @@ impl Bimaterial {
     }
 
     /// Centre of the innermost point of the right constrained layer.
-    pub fn support_right(&self) -> f64 {
+    fn innermost_right(&self) -> f64 {
         if self.strip {
             0.9725
         } else {
             1.0 - 2.5 * self.dx_right
         }
+    }
+
+    /// Where the reference clamps the left end: with the surface correction,
+    /// the face of the held cells (a grip, `model::surface`), half a spacing
+    /// beyond the innermost held centre; without it, that centre (the papers'
+    /// model behaves as a spring chain fixed at its last held node).
+    pub fn support_left(&self) -> f64 {
+        self.innermost_left()
+            + if self.surface_correction {
+                0.5 * self.dx_left
+            } else {
+                0.0
+            }
+    }
+
+    /// Where the reference holds the right end: the 1D bar's is a grip as on
+    /// the left; the strip's prescribes u_x only (a roller, not corrected), at
+    /// the innermost centre.
+    pub fn support_right(&self) -> f64 {
+        let shift = if self.surface_correction && !self.strip {
+            0.5 * self.dx_right
+        } else {
+            0.0
+        };
+        self.innermost_right() - shift
+    }
+
+    /// The strip's scikit-fem reference for these supports
+    /// (`validation/bimaterial_bar/fem`): `reference.json` clamps x = 0.025,
+    /// `reference_clamp_face.json` x = 0.03 (the paper's spacing corrected),
+    /// `reference_clamp_face_r3.json` x = 0.025 + 0.01/6 (three times finer).
+    pub fn strip_reference(&self) -> Result<String, std::io::Error> {
+        let file = match (
+            self.surface_correction,
+            (0.01 / self.dx_left).round() as i64,
+        ) {
+            (false, _) => "reference.json",
+            (true, 1) => "reference_clamp_face.json",
+            (true, 3) => "reference_clamp_face_r3.json",
+            (true, r) => {
+                return Err(std::io::Error::other(format!(
+                    "no FEM reference of the corrected strip {r} times finer"
+                )))
+            }
+        };
+        std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("validation/bimaterial_bar/fem")
+                .join(file),
+        )
     }
 
     /// The scene: 1D: 3 points held at each end; 2D: every point up to the supports.
@@ -61,7 +111,7 @@ impl Bimaterial {
 
     /// The scene's TOML text.
     pub fn text(&self) -> String {
-        let (a, b) = (self.support_left(), self.support_right());
+        let (a, b) = (self.innermost_left(), self.innermost_right());
         let (left_max, right_min) = (a + 0.25 * self.dx_left, b - 0.25 * self.dx_right);
         let horizons = if self.constant_horizon {
             "constant"
@@ -255,7 +305,7 @@ impl PlateWithHole {
             pin_x = -0.5 + h,
             roller_x = 0.5 - h,
             dilatation = if gradient {
-                "\n            dilatation = \"gradient\""
+                "\n            formulation = \"paper\"\n            dilatation = \"gradient\""
             } else {
                 ""
             },
