@@ -65,7 +65,7 @@
 //! factor is `1/t` (its energy is then the free part `t` of the continued
 //! bond's). So every bond between a held and a free point is multiplied by
 //! `1/t`, `t = s/(s + a)` with `s` and `a` the depths of its ends below the
-//! boundary between the held and the free points ([`grip_factors`]; exact
+//! boundary between the held and the free points ([`grip_fractions`]; exact
 //! for a flat grip along the lattice, `1 ≤ 1/t ≤ 7` at `m = 3`). Points with
 //! only some components prescribed (rollers), and held points bonded to no
 //! other held point (point supports, [`grip_points`]), are left as they are.
