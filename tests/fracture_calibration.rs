@@ -16,6 +16,20 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
+/// The tabulated factors of the plane-stress bond-based lattice at m = 3.015,
+/// overlap volumes, with or without the surface correction.
+fn plane_stress_factors(
+    surfaces: dhpd::scene::SurfaceCorrection,
+) -> dhpd::damage::calibration::LatticeFactors {
+    dhpd::damage::calibration::bond_based_factors(
+        dhpd::scene::Dimension::PlaneStress,
+        dhpd::scene::VolumeCorrection::Overlap,
+        surfaces,
+        3.015,
+    )
+    .unwrap()
+}
+
 /// A short strip: 60 × 20 spacings, notch 12.
 fn short_strip(m: f64) -> Strip {
     let mut s = Strip::new("bond_based", m);
@@ -76,14 +90,7 @@ fn steady_growth_dissipates_g0_with_the_dissipation_calibration() {
     s.calibration = "dissipation";
     let d = s.dissipation(&dir).unwrap();
     assert!((d.d - 1.0).abs() < 1e-4, "D = {}", d.d);
-    let r = dhpd::damage::calibration::bond_based_factors(
-        dhpd::scene::Dimension::PlaneStress,
-        dhpd::scene::VolumeCorrection::Overlap,
-        dhpd::scene::SurfaceCorrection::Energy,
-        3.015,
-    )
-    .unwrap()
-    .trapping;
+    let r = plane_stress_factors(dhpd::scene::SurfaceCorrection::Energy).trapping;
     assert!(
         (d.trapping.unwrap() / r - 1.0).abs() < 1e-4,
         "{:?} against {r}",
@@ -138,14 +145,7 @@ fn the_calibrated_peak_load_is_the_trapping_ratio_times_lefm() {
     case.stop_after_peak = Some(0.7);
     let p = peak(&case);
     let lefm = lefm_critical_load();
-    let r = dhpd::damage::calibration::bond_based_factors(
-        dhpd::scene::Dimension::PlaneStress,
-        dhpd::scene::VolumeCorrection::Overlap,
-        dhpd::scene::SurfaceCorrection::Energy,
-        3.015,
-    )
-    .unwrap()
-    .trapping;
+    let r = plane_stress_factors(dhpd::scene::SurfaceCorrection::Energy).trapping;
     assert!(
         (p / (r * lefm) - 1.0).abs() < 0.02,
         "peak {p:.4e} against r × LEFM = {r} × {lefm:.4e}"
@@ -190,14 +190,7 @@ fn the_continuum_calibration_reproduces_the_committed_study() {
     );
     case.calibration = "dissipation";
     let calibrated = peak(&case);
-    let d = dhpd::damage::calibration::bond_based_factors(
-        dhpd::scene::Dimension::PlaneStress,
-        dhpd::scene::VolumeCorrection::Overlap,
-        dhpd::scene::SurfaceCorrection::None,
-        3.015,
-    )
-    .unwrap()
-    .dissipation;
+    let d = plane_stress_factors(dhpd::scene::SurfaceCorrection::None).dissipation;
     assert!(
         (calibrated * d.sqrt() / continuum - 1.0).abs() < 1e-9,
         "{calibrated} × sqrt({d}) against {continuum}"
@@ -211,13 +204,7 @@ fn the_continuum_calibration_reproduces_the_committed_study() {
 /// measures −2.4 %, and the peak rises to LEFM as δ/a falls).
 #[test]
 fn the_peak_calibration_lowers_the_peak_by_the_trapping_ratio() {
-    let factors = dhpd::damage::calibration::bond_based_factors(
-        dhpd::scene::Dimension::PlaneStress,
-        dhpd::scene::VolumeCorrection::Overlap,
-        dhpd::scene::SurfaceCorrection::Energy,
-        3.015,
-    )
-    .unwrap();
+    let factors = plane_stress_factors(dhpd::scene::SurfaceCorrection::Energy);
     let mut case = Sent::new("bond_based", 30, 3.015);
     case.stop_after_peak = Some(0.7);
     let dissipation = peak(&case);

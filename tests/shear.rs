@@ -13,6 +13,17 @@ use dhpd::scene::Scene;
 const E: f64 = 30e9;
 
 fn plate(dimension: &str, nu: f64, spacing: f64, size: [f64; 3], dilatation: &str) -> Scene {
+    block(
+        dimension,
+        nu,
+        spacing,
+        size,
+        &format!("formulation = \"paper\"\ndilatation = \"{dilatation}\"\n"),
+    )
+}
+
+/// A shear-model block `[0, size]` on a grid of `spacing`, with further `[model]` lines.
+fn block(dimension: &str, nu: f64, spacing: f64, size: [f64; 3], model_lines: &str) -> Scene {
     let (lo, hi) = if dimension == "3d" {
         (
             "[0.0, 0.0, 0.0]".to_string(),
@@ -25,7 +36,7 @@ fn plate(dimension: &str, nu: f64, spacing: f64, size: [f64; 3], dilatation: &st
         )
     };
     scene(&format!(
-        "[model]\ndimension = \"{dimension}\"\nkind = \"shear\"\nformulation = \"paper\"\ndilatation = \"{dilatation}\"\n[materials.m]\nyoungs_modulus = {E}\npoisson_ratio = {nu}\n\
+        "[model]\ndimension = \"{dimension}\"\nkind = \"shear\"\n{model_lines}[materials.m]\nyoungs_modulus = {E}\npoisson_ratio = {nu}\n\
          [[regions]]\nmaterial = \"m\"\nspacing = {spacing}\nbox = {{ min = {lo}, max = {hi} }}\n"
     ))
 }
@@ -362,22 +373,7 @@ fn the_strip_section_is_stiffer_by_the_rim_anisotropy() {
 /// The energy formulation (`model.formulation = "energy"`, src/model/shear.rs):
 /// a scene of the plate with that formulation.
 fn energy_plate(dimension: &str, nu: f64, spacing: f64, size: [f64; 3]) -> Scene {
-    let (lo, hi) = if dimension == "3d" {
-        (
-            "[0.0, 0.0, 0.0]".to_string(),
-            format!("[{}, {}, {}]", size[0], size[1], size[2]),
-        )
-    } else {
-        (
-            "[0.0, 0.0]".to_string(),
-            format!("[{}, {}]", size[0], size[1]),
-        )
-    };
-    scene(&format!(
-        "[model]\ndimension = \"{dimension}\"\nkind = \"shear\"\nformulation = \"energy\"\n\
-         [materials.m]\nyoungs_modulus = {E}\npoisson_ratio = {nu}\n\
-         [[regions]]\nmaterial = \"m\"\nspacing = {spacing}\nbox = {{ min = {lo}, max = {hi} }}\n"
-    ))
+    block(dimension, nu, spacing, size, "formulation = \"energy\"\n")
 }
 
 /// Energy formulation: under any homogeneous displacement gradient the
