@@ -310,7 +310,6 @@ const CASES: &[Case] = &[
     // --- shear model ---
     c("shear_without_poisson_ratio", &[Rep("thickness = 0.01", "thickness = 0.01\nkind = \"shear\""), Rep("poisson_ratio = 0.3333333333333333\n", "")], None, 2, &["materials.soft.poisson_ratio", "shear"]),
     c("shear_in_1d", &[Whole(BAR_1D), Rep("dimension = \"1d\"", "dimension = \"1d\"\nkind = \"shear\"")], None, 2, &["model.kind"]),
-    c("stress_output_with_bond_based", &[Add("\n[output]\nstress = true\n")], None, 2, &["output.stress"]),
     c("shear_single_row_singular_shape_tensor", &[Rep("thickness = 0.01", "thickness = 0.01\nkind = \"shear\""), Rep("max = [0.2, 0.1] }\n\n[[boundary]]", "max = [0.2, 0.01] }\n\n[[boundary]]"), Rep("min = [0.0, 0.0], max = [0.01, 0.1] }\ndisplacement", "min = [0.0, 0.0], max = [0.02, 0.01] }\ndisplacement"), Rep("box = { min = [0.19, 0.0], max = [0.2, 0.1] }", "box = { min = [0.19, 0.0], max = [0.2, 0.01] }"), Rep("from = [0.0, 0.05]\nto = [0.2, 0.05]", "from = [0.0, 0.005]\nto = [0.2, 0.005]")], None, 3, &["shape tensor of point"]),
     c("solver_method_unknown", &[Add("\n[solver]\nmethod = \"cg\"\n")], None, 2, &["solver.method"]),
     // Formerly known gaps, fixed: rigid motions named before factorising, JSON root field,

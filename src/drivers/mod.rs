@@ -12,6 +12,7 @@ pub mod quasi_static;
 pub mod setup;
 pub mod shares;
 pub mod static_solve;
+mod stress;
 pub mod system;
 
 use crate::discretization::Discretization;
@@ -99,6 +100,8 @@ pub struct Snapshot<'a> {
     pub velocity: Option<&'a [[f64; 3]]>,
     /// Damage per point.
     pub damage: &'a [f64],
+    /// Recovered stress per point, when the scene asks for it.
+    pub stress: Option<&'a [crate::model::Block]>,
     /// Intact bonds touching each point, when `disc` does not hold every
     /// bond (an explicit run on several processes: gathered); `None`:
     /// counted from `disc`.

@@ -3,7 +3,7 @@
 //! set (and, when the scene asks, the recovered stress).
 
 use super::setup::{Plan, Setup, Timings};
-use super::shares::{bond_counts, bonds_held, sum_shares, total_bonds};
+use super::shares::{bond_counts, bonds_held, total_bonds};
 use super::system::{agreed, check_range, reactions, right_hand_side, Reaction, System};
 use super::{forward, Observer};
 use crate::assembly::dofs::DofMap;
@@ -12,8 +12,8 @@ use crate::assembly::loads::AppliedLoad;
 use crate::assembly::pattern::Pattern;
 use crate::assembly::stiffness::Stiffness;
 use crate::discretization::Discretization;
-use crate::error::{Error, NumericalError};
-use crate::model::{AnyModel, Block, Model};
+use crate::error::Error;
+use crate::model::{AnyModel, Block};
 use crate::notes::Notes;
 use crate::scene::{Dimension, ModelKind, Scene, SolverMethod};
 use crate::solve::cholesky::PivotStats;
@@ -174,9 +174,12 @@ pub fn run(
 }
 
 /// Suggests the gradient dilatation for nearly incompressible shear-model
-/// materials in plane strain and 3D (plane stress stays compressible).
+/// materials in plane strain and 3D (plane stress stays compressible), with
+/// the paper's force (the energy formulation's dilatation is already the
+/// trace of its gradient).
 fn note_near_incompressible(scene: &Scene, notes: &mut Notes) {
     if scene.model.kind != ModelKind::Shear
+        || scene.model.energy_shear()
         || scene.model.gradient_dilatation()
         || scene.model.dimension == Dimension::PlaneStress
     {
@@ -253,8 +256,10 @@ fn solve_with(
     let u = dofs.expand(&solved.x);
     let reactions = reactions(model, &disc, &dofs, &f_ext, &u, 1.0);
     timings.solve = report.solve_seconds + t.elapsed().as_secs_f64();
-    let stress = agreed(&scene.solver, recovered_stress(scene, model, &disc, &u))?;
-    let stress = gather_stress(&disc, stress);
+    let stress = match scene.output.stress {
+        true => Some(super::stress::field(model, &disc, &u)?),
+        false => None,
+    };
     let counts = Counts::of(&disc, &dofs, &system.pipeline, asymmetry, report);
     let bond_counts = bond_counts(&disc);
     let residual = report.residual;
@@ -276,56 +281,4 @@ fn solve_with(
         },
         plan,
     })
-}
-
-/// The stress of every point (001 Eq. 32), when the scene asks for it; a
-/// non-finite one is refused, naming the point. On a body discretised over
-/// several processes each recovers its own points' ([`gather_stress`] adds
-/// up the processes').
-fn recovered_stress(
-    scene: &Scene,
-    model: &AnyModel,
-    disc: &Discretization,
-    u: &[[f64; 3]],
-) -> Result<Option<Vec<Block>>, Error> {
-    if !scene.output.stress {
-        return Ok(None);
-    }
-    use rayon::prelude::*;
-    let stress: Vec<Block> = (0..disc.points.len())
-        .into_par_iter()
-        .map(|i| match disc.reports(i) {
-            true => model.stress(disc, i, u).unwrap_or_default(),
-            false => Block::default(),
-        })
-        .collect();
-    if let Some(i) = stress
-        .iter()
-        .position(|b| b.iter().flatten().any(|v| !v.is_finite()))
-    {
-        return Err(NumericalError::NonFinite {
-            what: format!(
-                "the recovered stress of point {i} (x = {:?}); nothing was written",
-                disc.points.x[i]
-            ),
-        }
-        .into());
-    }
-    Ok(Some(stress))
-}
-
-/// Every point's stress summed over the processes of a body discretised
-/// over several (each holds its own points' and zeros: a collective call).
-fn gather_stress(disc: &Discretization, stress: Option<Vec<Block>>) -> Option<Vec<Block>> {
-    let mut stress = stress?;
-    if disc.partial_share().is_some() {
-        let mut flat: Vec<f64> = stress.iter().flatten().flatten().copied().collect();
-        sum_shares(disc, &mut flat);
-        for (block, values) in stress.iter_mut().zip(flat.chunks(9)) {
-            for (r, row) in block.iter_mut().enumerate() {
-                row.copy_from_slice(&values[3 * r..3 * r + 3]);
-            }
-        }
-    }
-    Some(stress)
 }

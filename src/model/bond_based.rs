@@ -16,6 +16,27 @@
 //! With the surface correction (`discretization.surface_correction = "energy"`,
 //! the default; [`super::surface`]) every weight is multiplied by its owner's
 //! positive factor `g_ij`, 1 where the family is full: `w_ij = C_i V_i V_j ν_ij g_ij`.
+//!
+//! **Stress** (`output.stress`). The stress of owner `i` is the derivative of
+//! its bonds' energy per unit volume with respect to a homogeneous strain,
+//! `W_i(ε) = ½ Σ_b w_b |ξ_b| (e_b·ε e_b)²` ([`super::surface`]), which is the
+//! flux of its own bonds' forces (the virial of the bonds it owns):
+//!
+//! ```text
+//! σ_i = (1/V_i) ∂W_i/∂ε = (1/V_i) Σ_{b owned by i, intact} F_b ⊗ ξ_b,
+//! F_b = w_b s_b e_b (linearised: s_b = e_b·η_b/|ξ_b|).
+//! ```
+//!
+//! It is symmetric. Under a homogeneous strain it depends only on the owner's
+//! even fourth moments, so with the surface correction every point, surface,
+//! edge and corner points included, gives the full family's stress: the
+//! lattice's (Hooke's law with the model's Poisson ratio, times the lattice's
+//! own bias of +1-2 %) for grid points and Hooke's law exactly for imported
+//! points (matched to the continuum ball). Without the correction a surface
+//! point reports its truncated family's smaller stress, as its stiffness is
+//! smaller. Bonds into a grip (factor `1/t`) carry the force of the continued
+//! bond and count with their whole `ξ`; points held by a grip report zero (they
+//! belong to the rigid grip, as in the shear model's energy formulation).
 
 use super::{Block, Column, Coupling, Model};
 use crate::discretization::Discretization;
@@ -34,6 +55,8 @@ pub struct BondBased {
     /// Whether the pre-crack faces were corrected as surfaces, because the
     /// uncracked bonds could not be searched ([`super::surface`], "Pre-cracks").
     pub crack_faces_corrected: bool,
+    /// Points held by a grip (their stress is zero; module docs); empty: none.
+    pub held: Vec<bool>,
 }
 
 impl BondBased {
@@ -53,6 +76,7 @@ impl BondBased {
             surface_factor: Vec::new(),
             unmatched_owners: 0,
             crack_faces_corrected: false,
+            held: Vec::new(),
         }
     }
 
@@ -115,6 +139,7 @@ impl BondBased {
                     .iter_mut()
                     .zip(fractions)
                     .for_each(|(g, t)| *g /= t);
+                model.held = held;
                 model
             }
             SurfaceCorrection::None => model,
@@ -212,6 +237,35 @@ impl Model for BondBased {
         let len = norm(&xi);
         let k = self.bond_weight(disc, i, b) / len;
         Some((k, xi.map(|v| v / len)))
+    }
+
+    fn stress(&self, disc: &Discretization, owner: usize, u: &[[f64; 3]]) -> Option<Block> {
+        let mut sigma = [[0.0; 3]; 3];
+        if self.held.get(owner) == Some(&true) {
+            return Some(sigma);
+        }
+        let p = &disc.points;
+        let bonds = &disc.bonds;
+        for b in bonds.owned_by(owner).filter(|&b| bonds.intact[b]) {
+            let j = bonds.neighbour[b] as usize;
+            let xi = sub(&p.x[j], &p.x[owner]);
+            let eta = sub(&u[j], &u[owner]);
+            let len = norm(&xi);
+            let e = xi.map(|v| v / len);
+            // F ⊗ ξ / V_i = (w s / V_i) |ξ| e ⊗ e, with w / V_i = C_i V_j ν g.
+            let scale = self.bond_weight(disc, owner, b) / p.volume[owner] * dot(&e, &eta);
+            for r in 0..3 {
+                for c in r..3 {
+                    sigma[r][c] += scale * e[r] * e[c];
+                }
+            }
+        }
+        for r in 1..3 {
+            for c in 0..r {
+                sigma[r][c] = sigma[c][r];
+            }
+        }
+        Some(sigma)
     }
 
     fn tangent_column(

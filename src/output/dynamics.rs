@@ -160,7 +160,7 @@ pub(crate) fn write(
         disc: &solution.disc,
         u: &solution.u,
         velocity: Some(&solution.v),
-        stress: None,
+        stress: solution.stress.as_deref(),
         damage: Some(&solution.damage),
         bond_counts: solution.bond_counts.as_deref(),
     };

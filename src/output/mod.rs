@@ -233,7 +233,7 @@ fn write_quasi_static(
         disc: &solution.disc,
         u: &solution.u,
         velocity: None,
-        stress: None,
+        stress: solution.stress.as_deref(),
         damage: Some(&solution.damage),
         bond_counts: None,
     };

@@ -23,7 +23,8 @@ impl Series {
         }
     }
 
-    /// Writes the step file of `s` (displacement, damage; velocity in dynamics).
+    /// Writes the step file of `s` (displacement, damage; velocity in dynamics;
+    /// stress when asked).
     pub(crate) fn write(&mut self, s: &Snapshot) -> Result<(), Error> {
         let file = format!("step_{:06}.vtu", s.step);
         vtu::write(
@@ -32,7 +33,7 @@ impl Series {
                 disc: s.disc,
                 u: s.u,
                 velocity: s.velocity,
-                stress: None,
+                stress: s.stress,
                 damage: Some(s.damage),
                 bond_counts: s.bond_counts,
             },

@@ -123,7 +123,7 @@ impl Scene {
             }
             None => fields::sanitize(default_name),
         };
-        model::late_checks(&spec, &model, &materials, &output)?;
+        model::late_checks(&spec, &model, &materials)?;
         let (dynamics, initial_conditions) = match explicit {
             Some(e) => {
                 // Each support's and load's time function goes with it.

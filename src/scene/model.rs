@@ -4,7 +4,6 @@
 
 use super::fields::positive;
 use super::material::{self, Material};
-use super::output::OutputSettings;
 use super::spec::{
     Dilatation, Dimension, HorizonMode, IsolatedPolicy, ModelKind, ModelSpec, SceneSpec,
     ShearFormulation, SurfaceCorrection, VolumeCorrection,
@@ -93,22 +92,15 @@ fn thickness(m: &ModelSpec) -> Result<f64, InputError> {
     }
 }
 
-/// What the model allows of the rest of the scene: stress recovery and the
-/// gradient dilatation are the shear model's, which needs 2D or 3D; the
+/// What the model allows of the rest of the scene: the gradient dilatation
+/// and the formulation are the shear model's, which needs 2D or 3D; the
 /// bond-based model represents only its implied Poisson ratio (unless
 /// `model.allow_any_poisson`).
 pub(super) fn late_checks(
     spec: &SceneSpec,
     model: &Model,
     materials: &[Material],
-    output: &OutputSettings,
 ) -> Result<(), InputError> {
-    if output.stress && model.kind != ModelKind::Shear {
-        return Err(InputError::new(
-            "output.stress",
-            "stress recovery is defined for the shear model (model.kind = \"shear\")",
-        ));
-    }
     if spec.model.dilatation.is_some() && model.kind != ModelKind::Shear {
         return Err(InputError::new(
             "model.dilatation",

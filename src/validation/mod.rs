@@ -316,9 +316,7 @@ impl PlateWithHole {
                  [[loads]]\nname = \"top\"\nkind = \"traction\"\nface = \"+y\"\nvalue = [0.0, -{p}]\n"
             );
         }
-        if self.shear {
-            text += "[output]\nstress = true\n";
-        }
+        text += "[output]\nstress = true\n";
         text
     }
 }

@@ -34,8 +34,9 @@ use crate::assembly::stiffness::Stiffness;
 use crate::csr::split_at_offsets;
 use crate::damage::{self, Criterion};
 use crate::discretization::Discretization;
+use crate::error::Error;
 use crate::model::bond_based::BondBased;
-use crate::model::Model;
+use crate::model::{Block as Tensor, Model};
 use rayon::prelude::*;
 
 /// Whether the bonds owned by point `i` are counted here (energies, breaks):
@@ -77,6 +78,59 @@ pub trait ForceField: Send {
     /// The vector path of the force loop, where it has a choice.
     fn simd(&self) -> Option<Simd> {
         None
+    }
+
+    /// The recovered stress of every point for displacements `u`
+    /// (`output.stress`; `drivers::stress`), when the field carries a model
+    /// for it; `None` otherwise.
+    fn stress(&self, _u: &[[f64; 3]]) -> Option<Result<Vec<Tensor>, Error>> {
+        None
+    }
+}
+
+/// A force field with the model its stress is recovered from: the pair and
+/// tangent kernels keep only their per-pair weights or their matrix, and
+/// their models do not change during a run (bond-based factors are frozen,
+/// a broken bond is an intact flag of the discretisation), so the model built
+/// at set-up answers for every state.
+pub struct WithStress<M: Model + Sync + Send> {
+    /// The force field.
+    pub field: Box<dyn ForceField>,
+    /// Its model.
+    pub model: M,
+}
+
+impl<M: Model + Sync + Send> ForceField for WithStress<M> {
+    fn forces(&mut self, u: &[[f64; 3]], out: &mut [[f64; 3]]) -> Breaks {
+        self.field.forces(u, out)
+    }
+
+    fn strain_energy(&self, u: &[[f64; 3]]) -> Option<f64> {
+        self.field.strain_energy(u)
+    }
+
+    fn disc(&self) -> &Discretization {
+        self.field.disc()
+    }
+
+    fn into_disc(self: Box<Self>) -> Discretization {
+        self.field.into_disc()
+    }
+
+    fn damage(&self) -> Vec<f64> {
+        self.field.damage()
+    }
+
+    fn simd(&self) -> Option<Simd> {
+        self.field.simd()
+    }
+
+    fn stress(&self, u: &[[f64; 3]]) -> Option<Result<Vec<Tensor>, Error>> {
+        Some(crate::drivers::stress::field(
+            &self.model,
+            self.field.disc(),
+            u,
+        ))
     }
 }
 
@@ -769,6 +823,10 @@ impl<M: Model> ForceField for FamilyKernel<M> {
 
     fn into_disc(self: Box<Self>) -> Discretization {
         self.disc
+    }
+
+    fn stress(&self, u: &[[f64; 3]]) -> Option<Result<Vec<Tensor>, Error>> {
+        Some(crate::drivers::stress::field(&self.model, &self.disc, u))
     }
 }
 

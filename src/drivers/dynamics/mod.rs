@@ -123,6 +123,8 @@ pub struct DynamicsSolution {
     pub v: Vec<[f64; 3]>,
     /// Final damage.
     pub damage: Vec<f64>,
+    /// Final recovered stress per point, when the scene asks for it.
+    pub stress: Option<Vec<crate::model::Block>>,
     /// The bonds each process held, on several processes.
     pub bonds_held: Option<Vec<usize>>,
     /// Intact bonds touching each point, when `disc` does not hold every bond

@@ -127,6 +127,7 @@ impl<'a> Relaxation<'a> {
             }
             if wants_snapshot(self.scene, step, last) {
                 let damage = self.kernel.damage();
+                let stress = self.kernel.stress(&s.u).transpose()?;
                 observer.snapshot(&Snapshot {
                     step,
                     timestep: step as f64,
@@ -134,6 +135,7 @@ impl<'a> Relaxation<'a> {
                     u: &s.u,
                     velocity: Some(&s.v),
                     damage: &damage,
+                    stress: stress.as_deref(),
                     bond_counts: None,
                 })?;
             }
@@ -157,7 +159,7 @@ impl<'a> Relaxation<'a> {
             forces: 0.0,
             output: output_seconds,
         };
-        Ok(self.solution(s, step, outcome, records, timings))
+        self.solution(s, step, outcome, records, timings)
     }
 
     /// The prescribed displacements, the forces and the first velocities.
@@ -289,7 +291,7 @@ impl<'a> Relaxation<'a> {
         outcome: Outcome,
         records: Vec<Record>,
         timings: DynamicsTimings,
-    ) -> DynamicsSolution {
+    ) -> Result<DynamicsSolution, Error> {
         let damage = self.kernel.damage();
         let kernel = setup::kernel_description(self.scene, self.kernel.as_ref());
         let mut log = Vec::new();
@@ -300,7 +302,9 @@ impl<'a> Relaxation<'a> {
                 self.tolerance
             ));
         }
-        DynamicsSolution {
+        let stress = self.kernel.stress(&s.u).transpose()?;
+        Ok(DynamicsSolution {
+            stress,
             bond_counts: None,
             disc: self.kernel.into_disc(),
             u: s.u,
@@ -322,6 +326,6 @@ impl<'a> Relaxation<'a> {
             kernel,
             log,
             plan: Default::default(),
-        }
+        })
     }
 }

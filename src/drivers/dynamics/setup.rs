@@ -4,7 +4,7 @@
 //! step (module docs of [`super`]) and the fictitious masses of dynamic
 //! relaxation.
 
-use super::kernels::{FamilyKernel, ForceField, PairKernel, TangentKernel};
+use super::kernels::{FamilyKernel, ForceField, PairKernel, TangentKernel, WithStress};
 use crate::assembly::dofs::{DofMap, PRESCRIBED};
 use crate::damage::Criterion;
 use crate::discretization::Discretization;
@@ -133,12 +133,23 @@ pub(super) fn kernel(
     let model = AnyModel::new(scene, &disc)?;
     model.warnings().into_iter().for_each(|w| notes.push(w));
     let limit = scene.solver.memory_limit_bytes;
+    let stress = scene.output.stress;
+    let with_stress = |field: Box<dyn ForceField>, model| -> Box<dyn ForceField> {
+        match stress {
+            true => Box::new(WithStress { field, model }),
+            false => field,
+        }
+    };
     Ok(match (model, dy.kernel) {
         (AnyModel::BondBased(model), ForceKernel::Nonlinear) => {
             let traditional = scene.model.horizons == HorizonMode::Traditional;
-            Box::new(PairKernel::new(disc, &model, criterion, traditional))
+            let field = Box::new(PairKernel::new(disc, &model, criterion, traditional));
+            with_stress(field, AnyModel::BondBased(model))
         }
-        (model, ForceKernel::Linearised) => Box::new(TangentKernel::new(disc, &model, limit)?),
+        (model, ForceKernel::Linearised) => {
+            let field = Box::new(TangentKernel::new(disc, &model, limit)?);
+            with_stress(field, model)
+        }
         (AnyModel::Shear(model), ForceKernel::Nonlinear) => {
             Box::new(FamilyKernel::new(disc, model, false, criterion))
         }

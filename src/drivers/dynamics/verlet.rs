@@ -413,6 +413,7 @@ impl<'a> Verlet<'a> {
                 let damage = self.damage();
                 let (u, v) = (self.gather(&state.u), self.gather(&state.v));
                 let counts = self.bond_counts();
+                let stress = self.kernel.stress(&u).transpose()?;
                 let written = observer.snapshot(&Snapshot {
                     step,
                     timestep: state.t,
@@ -420,6 +421,7 @@ impl<'a> Verlet<'a> {
                     u: &u,
                     velocity: Some(&v),
                     damage: &damage,
+                    stress: stress.as_deref(),
                     bond_counts: counts.as_deref(),
                 });
                 self.agreed(written)?;
@@ -432,7 +434,7 @@ impl<'a> Verlet<'a> {
             forces: force_seconds,
             output: output_seconds,
         };
-        Ok(self.solution(state, books, records, timings))
+        self.solution(state, books, records, timings)
     }
 
     /// The displacements and velocities of the initial conditions (a
@@ -739,12 +741,14 @@ impl<'a> Verlet<'a> {
         books: Books,
         records: Vec<Record>,
         timings: DynamicsTimings,
-    ) -> DynamicsSolution {
+    ) -> Result<DynamicsSolution, Error> {
         let damage = self.damage();
         let (u, v) = (self.gather(&s.u), self.gather(&s.v));
         let bond_counts = self.bond_counts();
+        let stress = self.kernel.stress(&u).transpose()?;
         let kernel = setup::kernel_description(self.scene, self.kernel.as_ref());
-        DynamicsSolution {
+        Ok(DynamicsSolution {
+            stress,
             bond_counts,
             disc: self.kernel.into_disc(),
             u,
@@ -766,7 +770,7 @@ impl<'a> Verlet<'a> {
             kernel,
             log: Vec::new(),
             plan: Default::default(),
-        }
+        })
     }
 }
 

@@ -63,7 +63,7 @@ use crate::assembly::stiffness;
 use crate::damage::{self, CalibrationReport, Criterion};
 use crate::discretization::Discretization;
 use crate::error::{Error, NumericalError};
-use crate::model::{AnyModel, Coupling, Model};
+use crate::model::{AnyModel, Block, Coupling, Model};
 use crate::notes::Notes;
 use crate::scene::{QuasiStatic, Scene, SolverMethod, Strategy};
 use crate::solve::low_rank::Term;
@@ -203,6 +203,8 @@ pub struct QuasiStaticSolution {
     pub u: Vec<[f64; 3]>,
     /// Final damage per point.
     pub damage: Vec<f64>,
+    /// Final recovered stress per point, when the scene asks for it.
+    pub stress: Option<Vec<Block>>,
     /// Final load factor.
     pub load_factor: f64,
     /// The scene's largest prescribed displacement component (the `displacement` column is λ times it).
@@ -376,7 +378,7 @@ fn run_with(
         loads,
         plan,
     };
-    Ok(run.solution(end))
+    run.solution(end)
 }
 
 /// How a run ended, and what it carries to its solution.
@@ -440,11 +442,25 @@ impl<'s> Run<'s> {
         }
     }
 
+    /// The recovered stress of the current bonds for displacements `u`, when
+    /// the scene asks for it.
+    fn stress(&self, u: &[[f64; 3]]) -> Result<Option<Vec<Block>>, Error> {
+        match self.scene.output.stress {
+            true => Ok(Some(crate::drivers::stress::field(
+                &self.model,
+                &self.disc,
+                u,
+            )?)),
+            false => Ok(None),
+        }
+    }
+
     /// The solution at the end of the run.
-    fn solution(self, end: End) -> QuasiStaticSolution {
+    fn solution(self, end: End) -> Result<QuasiStaticSolution, Error> {
         let load_factor = end.load_factor;
         let u = self.displacement(load_factor);
         let damage = damage::damage(&self.disc);
+        let stress = self.stress(&u)?;
         let final_reactions = self
             .unit_reactions
             .iter()
@@ -453,7 +469,8 @@ impl<'s> Run<'s> {
                 ..r.clone()
             })
             .collect();
-        QuasiStaticSolution {
+        Ok(QuasiStaticSolution {
+            stress,
             set_names: self.dofs.sets.iter().map(|s| s.name.clone()).collect(),
             nnz_k: self.system.pipeline.stored_entries(),
             dofs_free: self.dofs.n_free(),
@@ -478,7 +495,7 @@ impl<'s> Run<'s> {
             loads: end.loads,
             final_reactions,
             plan: end.plan,
-        }
+        })
     }
 }
 

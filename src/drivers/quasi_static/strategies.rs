@@ -320,6 +320,7 @@ impl Run<'_> {
         }
         let u = self.displacement(record.load_factor);
         let damage = damage::damage(&self.disc);
+        let stress = self.stress(&u)?;
         observer.snapshot(&Snapshot {
             step: record.step,
             timestep: record.load_factor,
@@ -327,6 +328,7 @@ impl Run<'_> {
             u: &u,
             velocity: None,
             damage: &damage,
+            stress: stress.as_deref(),
             bond_counts: None,
         })
     }
