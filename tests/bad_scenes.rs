@@ -200,6 +200,12 @@ const CASES: &[Case] = &[
     c("json_unknown_key", &[Json, Whole(r#"{"model": {"dimension": "1d"}, "materials": {"bar": {"youngs_modulus": 1.0}},
         "regions": [{"material": "bar", "spacin": 0.01, "box": {"min": [0.0], "max": [0.1]}}]}"#)], None, 2, &["regions[0]", "spacin"]),
     c("json_syntax_error", &[Json, Whole(r#"{"model": {"dimension": "1d"},}"#)], None, 2, &["trailing comma", "line 1 column 31", "JSON"]),
+    // A key twice (serde would keep the last) and a second value after the scene (issue 34).
+    c("json_duplicate_material", &[Json, Whole(r#"{"model": {"dimension": "1d"}, "materials": {"soft": {"youngs_modulus": 1.0}, "soft": {"youngs_modulus": 5.0}},
+        "regions": [{"material": "soft", "spacing": 0.01, "box": {"min": [0.0], "max": [0.1]}}]}"#)], None, 2, &["materials", "\"soft\" is given twice"]),
+    c("json_trailing_scene", &[Json, Whole(r#"{"model": {"dimension": "1d"}, "materials": {"bar": {"youngs_modulus": 1.0}},
+        "regions": [{"material": "bar", "spacing": 0.01, "box": {"min": [0.0], "max": [0.1]}}]}
+        {"model": {"dimension": "1d"}}"#)], None, 2, &["scene", "text after the scene's JSON value"]),
     // --- model ---
     c("thickness_in_3d", &[Rep("\"plane_stress\"", "\"3d\"")], None, 2, &["model.thickness"]),
     c("area_in_2d", &[Rep("thickness = 0.01", "area = 0.01")], None, 2, &["model.area"]),
@@ -373,6 +379,7 @@ const CASES: &[Case] = &[
     c("time_function_in_a_static_scene", &[Rep("value = [1.0e6, 0.0]", "value = [1.0e6, 0.0]\ntime_function = { kind = \"constant\" }")], None, 2, &["loads[0].time_function", "[dynamics]"]),
     c("initial_condition_sets_nothing", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\nbox = { min = [0.0, 0.0], max = [0.1, 0.1] }\n")], None, 2, &["initial_conditions[0]", "sets nothing"]),
     c("gaussian_amplitude_wrong_length", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\ngaussian = { center = [0.1], width = 0.02, amplitude = [1e-6] }\n")], None, 2, &["initial_conditions[0].gaussian.amplitude", "give 2"]),
+    c("initial_condition_box_selects_no_point", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add(DY), Add("\n[[initial_conditions]]\nbox = { min = [5.0, 5.0], max = [6.0, 6.0] }\nvelocity = { x = 1.0 }\n")], None, 2, &["initial_conditions[0].box", "selects no point"]),
     c("initial_conditions_in_a_static_scene", &[Add("\n[[initial_conditions]]\nvelocity = { x = 1.0 }\n")], None, 2, &["initial_conditions", "[dynamics]"]),
     c("relaxation_with_density", &[Rep("youngs_modulus = 1.0e9", "youngs_modulus = 1.0e9\ndensity = 1000.0"), Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 100\n")], None, 2, &["materials.soft.density", "fictitious"]),
     c("relaxation_with_time_step", &[Add("\n[dynamics]\nmethod = \"relaxation\"\nsteps = 100\ntime_step = 1e-6\n")], None, 2, &["dynamics.time_step", "verlet"]),

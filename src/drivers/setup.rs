@@ -139,8 +139,8 @@ pub struct Plan {
 }
 
 impl Plan {
-    /// Selects the profile and probe points; a profile, or a `fracture.no_fail`
-    /// box, that selects no point is an input error.
+    /// Selects the profile and probe points; a profile, a `fracture.no_fail`
+    /// box or an `initial_conditions` box that selects no point is an input error.
     pub fn new(scene: &Scene, disc: &Discretization) -> Result<Self, InputError> {
         let profiles = profile_points(scene, disc)?;
         let probes = probe_points(scene, disc)?;
@@ -153,6 +153,18 @@ impl Plan {
                     "selects no point; give a box that holds the points whose bonds must not \
                      break",
                 ));
+            }
+        }
+        // The same for an initial-condition box: it would start nothing moving.
+        for (k, ic) in scene.initial_conditions.iter().enumerate() {
+            if let Some(b) = &ic.bounds {
+                if !disc.points.x.iter().any(|p| b.contains(p)) {
+                    return Err(InputError::new(
+                        format!("initial_conditions[{k}].box"),
+                        "selects no point; give a box that holds the points it sets (or leave \
+                         the box out to set every point)",
+                    ));
+                }
             }
         }
         Ok(Plan { profiles, probes })

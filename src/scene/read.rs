@@ -10,6 +10,7 @@ use std::path::Path;
 pub fn parse_spec(text: &str, json: bool) -> Result<SceneSpec, InputError> {
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     if json {
+        check_json(text)?;
         let de = &mut serde_json::Deserializer::from_str(text);
         serde_path_to_error::deserialize(de).map_err(|e| {
             let field = path_or_root(&e.path().to_string());
@@ -21,6 +22,85 @@ pub fn parse_spec(text: &str, json: bool) -> Result<SceneSpec, InputError> {
             let field = path_or_root(&e.path().to_string());
             InputError::new(field, toml_error(text, e.inner()).message)
         })
+    }
+}
+
+/// Refuses what a JSON parser would otherwise resolve silently: a key given
+/// twice in one object (serde keeps the last) and text after the scene's
+/// value (two scenes pasted into one file would run the first). TOML refuses
+/// both itself.
+fn check_json(text: &str) -> Result<(), InputError> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    serde_path_to_error::deserialize::<_, UniqueKeys>(&mut *de).map_err(|e| {
+        let field = path_or_root(&e.path().to_string());
+        InputError::new(field, format!("{} (JSON)", e.inner()))
+    })?;
+    de.end().map_err(|e| {
+        InputError::new(
+            "scene",
+            format!("text after the scene's JSON value: {e}; a file holds one scene"),
+        )
+    })
+}
+
+/// Any JSON value whose objects each name a key once ([`check_json`]).
+struct UniqueKeys;
+
+impl<'de> serde::Deserialize<'de> for UniqueKeys {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        d.deserialize_any(UniqueKeysVisitor)
+    }
+}
+
+struct UniqueKeysVisitor;
+
+impl<'de> serde::de::Visitor<'de> for UniqueKeysVisitor {
+    type Value = UniqueKeys;
+
+    fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_bool<E>(self, _: bool) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_i64<E>(self, _: i64) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_u64<E>(self, _: u64) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_f64<E>(self, _: f64) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_str<E>(self, _: &str) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_unit<E>(self) -> Result<UniqueKeys, E> {
+        Ok(UniqueKeys)
+    }
+
+    fn visit_seq<A: serde::de::SeqAccess<'de>>(self, mut a: A) -> Result<UniqueKeys, A::Error> {
+        while a.next_element::<UniqueKeys>()?.is_some() {}
+        Ok(UniqueKeys)
+    }
+
+    fn visit_map<A: serde::de::MapAccess<'de>>(self, mut a: A) -> Result<UniqueKeys, A::Error> {
+        let mut seen = std::collections::HashSet::new();
+        while let Some(key) = a.next_key::<String>()? {
+            if !seen.insert(key.clone()) {
+                return Err(serde::de::Error::custom(format!(
+                    "the key {key:?} is given twice in one object (give each key once)"
+                )));
+            }
+            a.next_value::<UniqueKeys>()?;
+        }
+        Ok(UniqueKeys)
     }
 }
 
