@@ -109,8 +109,8 @@ pub fn check_size(settings: &SolverSettings, n_free: usize) -> Result<(), Error>
                 "sparse LU is offered up to {LU_MAX_UNKNOWNS} free unknowns and this body \
                  has {n_free}: its fill is not predicted and grows fast (measured on the shear \
                  model: 6.4 s and 1.3 GiB at 19,796 unknowns, 90 s and 10 GiB at 79,596); \
-                 leave solver.method out (Cholesky for the bond-based model, GMRES for the \
-                 shear model) or use \"iterative\""
+                 leave solver.method out (Cholesky or CG for a symmetric tangent, GMRES for \
+                 the shear model's paper force) or use \"iterative\""
             ),
         )
         .into());
