@@ -255,6 +255,22 @@ pub fn generate_points(scene: &Scene) -> Result<RawBody, Error> {
     if raw.is_empty() {
         return Err(InputError::new("holes", "the holes remove every point of the body").into());
     }
+    // A region the holes empty would vanish without a word (its material and
+    // spacing with it): almost always a misplaced box or hole.
+    let mut kept = vec![false; scene.regions.len()];
+    for p in &raw {
+        if let Source::Region(k) = p.source {
+            kept[k as usize] = true;
+        }
+    }
+    if let Some(k) = kept.iter().position(|&kept| !kept) {
+        return Err(InputError::new(
+            format!("regions[{k}]"),
+            "every point of this region lies inside a hole ([[holes]]); remove the region, or \
+             move its box or the hole",
+        )
+        .into());
+    }
     check_scales(&raw, scene)?;
     reject_duplicates(&raw)?;
     overlap::reject_overlaps(&raw, &scene.regions, d)?;
