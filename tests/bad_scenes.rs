@@ -239,6 +239,7 @@ const CASES: &[Case] = &[
     c("unknown_region_material", &[Rep("material = \"soft\"", "material = \"steel\"")], None, 2, &["regions[0].material", "steel"]),
     c("no_regions_no_point_files", &[Rep("[[regions]]\nmaterial = \"soft\"\nspacing = 0.01\nbox = { min = [0.0, 0.0], max = [0.2, 0.1] }\n", "")], None, 2, &["regions"]),
     c("holes_remove_everything", &[Add("\n[[holes]]\ncenter = [0.1, 0.05]\nradius = 1.0\n")], None, 2, &["holes"]),
+    c("traction_on_held_points_only", &[Add("\n[[boundary]]\nname = \"right\"\nbox = { min = [0.19, 0.0], max = [0.2, 0.1] }\ndisplacement = { x = 0.0 }\n")], None, 2, &["loads[0]", "\"pull\" acts only on prescribed"]),
     c("hole_removes_a_whole_region", &[Add("\n[[regions]]\nmaterial = \"soft\"\nspacing = 0.01\nbox = { min = [0.3, 0.0], max = [0.32, 0.02] }\n[[holes]]\ncenter = [0.31, 0.01]\nradius = 0.03\n")], None, 2, &["regions[1]", "inside a hole"]),
     c("hole_negative_radius", &[Add("\n[[holes]]\ncenter = [0.1, 0.05]\nradius = -0.02\n")], None, 2, &["holes[0].radius"]),
     c("crack_3d_keys_in_2d", &[Add("\n[[cracks]]\norigin = [0.1, 0.0]\nedge1 = [0.0, 0.05]\nedge2 = [0.0, 0.0]\n")], None, 2, &["cracks[0]"]),

@@ -18,6 +18,34 @@ use crate::vector::{dot, norm, sub};
 use serde::Serialize;
 use std::time::Instant;
 
+/// Refuses a load all of whose force falls on prescribed displacement
+/// components: it would do nothing (its force goes straight into a reaction).
+/// Every process holds every point and the whole map, so all agree.
+fn check_loads_act(
+    scene: &Scene,
+    dofs: &DofMap,
+    per_load: &[Vec<(usize, [f64; 3])>],
+) -> Result<(), InputError> {
+    use crate::assembly::dofs::PRESCRIBED;
+    for (k, forces) in per_load.iter().enumerate() {
+        let acts = forces.iter().any(|(i, f)| {
+            (0..dofs.d).any(|c| f[c] != 0.0 && dofs.free_index[3 * i + c] != PRESCRIBED)
+        });
+        if !forces.is_empty() && !acts {
+            return Err(InputError::new(
+                format!("loads[{k}]"),
+                format!(
+                    "\"{}\" acts only on prescribed displacement components (every point it \
+                     loads is held by a [[boundary]] in the loaded directions), so it would do \
+                     nothing; move the load or the boundary box, or remove the load",
+                    scene.loads[k].name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Wall time per phase in seconds.
 #[derive(Debug, Clone, Default, Serialize)]
 pub struct Timings {
@@ -91,6 +119,7 @@ impl Setup {
         if explicit.is_none() && dofs.n_free() == 0 {
             return Err(NumericalError::NothingToSolve.into());
         }
+        check_loads_act(scene, &dofs, &forces.per_load)?;
         if explicit.is_none_or(|m| m == DynamicsMethod::Relaxation) {
             // A static equilibrium (relaxation seeks one too) needs a held body.
             rigid_modes::check(&disc, &dofs, processes)?;
