@@ -156,8 +156,8 @@ fn the_calibrated_peak_load_is_the_trapping_ratio_times_lefm() {
 /// `fracture.calibration = "continuum"` keeps the papers' values, and
 /// `surface_correction = "none"` the earlier model: the SENT plate
 /// (W/Δx = 30, m = 3) peaks where the fracture study measured it with them
-/// (`validation/fracture/results/lefm_bond_based.csv`), and the calibrated peak
-/// is lower by exactly `sqrt(D)` (every event load scales with the critical values).
+/// (`validation/fracture/results/lefm_bond_based_uncorrected.csv`, the study
+/// before the surface correction), and the calibrated peak is lower by exactly `sqrt(D)` (every event load scales with the critical values).
 #[test]
 fn the_continuum_calibration_reproduces_the_committed_study() {
     let mut case = Sent::new("bond_based", 30, 3.015);
@@ -167,7 +167,7 @@ fn the_continuum_calibration_reproduces_the_committed_study() {
     let continuum = peak(&case);
     let table = std::fs::read_to_string(
         Path::new(env!("CARGO_MANIFEST_DIR"))
-            .join("validation/fracture/results/lefm_bond_based.csv"),
+            .join("validation/fracture/results/lefm_bond_based_uncorrected.csv"),
     )
     .unwrap();
     let header: Vec<&str> = table.lines().next().unwrap().split(',').collect();

@@ -242,6 +242,36 @@ fn write_quasi_static(
     summary::write_quasi_static(&tmp.join("summary.json"), scene, solution, total_seconds)
 }
 
+/// Refuses an output directory that holds one of the run's inputs (the scene
+/// file `scene_file`, its point files and meshes): the run replaces the
+/// directory, which would delete them. Call it before solving.
+pub fn check_inputs_outside(
+    dir: &Path,
+    scene_file: &Path,
+    scene: &Scene,
+) -> Result<(), InputError> {
+    let Ok(target) = dir.canonicalize() else {
+        return Ok(()); // not there yet: it holds nothing
+    };
+    let inputs = std::iter::once(scene_file)
+        .chain(scene.point_files.iter().map(|f| f.path.as_path()))
+        .chain(scene.meshes.iter().map(|m| m.path.as_path()));
+    for input in inputs {
+        if input.canonicalize().is_ok_and(|p| p.starts_with(&target)) {
+            return Err(InputError::new(
+                "--out",
+                format!(
+                    "refusing to write results to {}: it holds {}, an input of this run, which \
+                     replacing the directory would delete; choose another directory",
+                    dir.display(),
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Checks that `dir` may receive results: it must not exist, or be an empty
 /// directory, or hold a previous dhpd result (`summary.json`); it may not be the
 /// working directory or one of its ancestors. Call it before solving.

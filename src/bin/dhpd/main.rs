@@ -78,9 +78,10 @@ fn main() {
     };
     let result = match cli.command {
         None => run_default(&world),
-        Some(Command::Run { scene, out, .. }) => {
-            scene::load(&scene).and_then(|s| run(&s, out.as_deref(), &world).map(|_| ()))
-        }
+        Some(Command::Run { scene, out, .. }) => scene::load(&scene).and_then(|s| {
+            dhpd::output::check_inputs_outside(&out_dir(&s, out.as_deref()), &scene, &s)?;
+            run(&s, out.as_deref(), &world).map(|_| ())
+        }),
         Some(Command::Check { scene }) => check(&scene),
     };
     if let Err(e) = result {
@@ -185,6 +186,12 @@ fn print_notes(notes: &mut Notes) {
 /// replaces it when complete.
 /// On several processes (`mpirun`), only `solver.method = "petsc"` runs, and
 /// only rank 0 prints and writes.
+/// Where a run writes: `--out`, or `dhpd-out/<scene name>`.
+fn out_dir(scene: &Scene, out: Option<&Path>) -> PathBuf {
+    out.map(Path::to_path_buf)
+        .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name))
+}
+
 fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Error> {
     if world.size() > 1 && scene.solver.method != SolverMethod::Petsc {
         return Err(InputError::new(
@@ -226,9 +233,7 @@ fn run(scene: &Scene, out: Option<&Path>, world: &World) -> Result<Solution, Err
         return Ok(solution);
     }
     let start = Instant::now();
-    let dir = out
-        .map(Path::to_path_buf)
-        .unwrap_or_else(|| Path::new("dhpd-out").join(&scene.name));
+    let dir = out_dir(scene, out);
     let mut notes = Notes::default();
     let results = Results::new(&dir, &mut notes);
     print_notes(&mut notes);
